@@ -1,0 +1,94 @@
+// The Vulkan instance, the chosen physical device, the logical device with
+// one compute(+graphics) queue, and the validation messenger.
+#pragma once
+#include <vulkan/vulkan.h>
+
+#include <functional>
+#include <mutex>
+#include <string>
+#include <vector>
+
+#include "engine/gpu/unique_handle.h"
+
+namespace qlight::gpu {
+
+struct ContextOptions {
+  // Khronos validation (with synchronization validation). Defaults to the
+  // QLIGHT_VALIDATION environment variable (tests set it to 1).
+  bool validation = false;
+  // Picks the physical device whose name contains this text (case-insensitive).
+  // Empty: the QLIGHT_DEVICE environment variable, else a discrete GPU first.
+  std::string deviceName;
+  // Instance extensions a window system needs (from glfwGetRequiredInstanceExtensions).
+  std::vector<std::string> instanceExtensions;
+  // Creates the presentation surface once the instance exists (windowed mode).
+  std::function<VkSurfaceKHR(VkInstance)> createSurface;
+  bool quiet = false;  // do not print the chosen device
+};
+
+ContextOptions defaultContextOptions();
+
+class Context {
+ public:
+  explicit Context(ContextOptions options);
+  Context(const Context&) = delete;
+  Context& operator=(const Context&) = delete;
+  ~Context();
+
+  VkInstance instance() const { return instance_; }
+  VkPhysicalDevice physicalDevice() const { return physical_; }
+  VkDevice device() const { return device_; }
+  VkQueue queue() const { return queue_; }
+  uint32_t queueFamily() const { return queueFamily_; }
+  VkSurfaceKHR surface() const { return surface_; }
+  const VkPhysicalDeviceProperties& properties() const { return properties_; }
+  std::string deviceName() const { return properties_.deviceName; }
+  bool validationEnabled() const { return validation_; }
+  bool hasFloatAtomicAdd() const { return floatAtomicAdd_; }
+  // Nanoseconds per timestamp tick; 0 when the queue has no timestamps.
+  double timestampPeriodNs() const { return timestampPeriodNs_; }
+
+  uint32_t findMemoryType(uint32_t typeBits, VkMemoryPropertyFlags required,
+                          VkMemoryPropertyFlags preferred = 0) const;
+
+  // Records with `record`, submits and waits (uploads, readbacks, tests).
+  void submitAndWait(const std::function<void(VkCommandBuffer)>& record) const;
+
+  // Every warning or error the validation layer reported so far.
+  std::vector<std::string> validationMessages() const;
+  size_t validationMessageCount() const;
+  void clearValidationMessages();
+
+  // Names an object for debuggers and validation messages.
+  void setName(uint64_t handle, VkObjectType type, const std::string& name) const;
+
+  PFN_vkCmdPushDescriptorSetKHR cmdPushDescriptorSet = nullptr;
+
+ private:
+  static VKAPI_ATTR VkBool32 VKAPI_CALL onValidationMessage(
+      VkDebugUtilsMessageSeverityFlagBitsEXT, VkDebugUtilsMessageTypeFlagsEXT,
+      const VkDebugUtilsMessengerCallbackDataEXT*, void*);
+  void createInstance(const ContextOptions& options);
+  void pickPhysicalDevice(const ContextOptions& options);
+  void createDevice();
+
+  bool validation_ = false;
+  bool floatAtomicAdd_ = false;
+  double timestampPeriodNs_ = 0.0;
+  Unique<VkInstance> instance_;
+  Unique<VkDebugUtilsMessengerEXT> messenger_;
+  Unique<VkSurfaceKHR> surface_;
+  VkPhysicalDevice physical_ = VK_NULL_HANDLE;
+  VkPhysicalDeviceProperties properties_{};
+  VkPhysicalDeviceMemoryProperties memory_{};
+  uint32_t queueFamily_ = 0;
+  Unique<VkDevice> device_;
+  VkQueue queue_ = VK_NULL_HANDLE;
+  Unique<VkCommandPool> oneShotPool_;
+  PFN_vkSetDebugUtilsObjectNameEXT setObjectName_ = nullptr;
+
+  mutable std::mutex messagesMutex_;
+  std::vector<std::string> messages_;
+};
+
+}  // namespace qlight::gpu
