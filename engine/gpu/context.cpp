@@ -357,6 +357,10 @@ VKAPI_ATTR VkBool32 VKAPI_CALL Context::onValidationMessage(
     VkDebugUtilsMessageSeverityFlagBitsEXT severity, VkDebugUtilsMessageTypeFlagsEXT,
     const VkDebugUtilsMessengerCallbackDataEXT* data, void* user) {
   auto* self = static_cast<Context*>(user);
+  // Compute images stay in GENERAL by design (no per-pass layout changes); the
+  // best-practice hint to copy from TRANSFER_SRC_OPTIMAL does not apply.
+  constexpr int32_t kGeneralLayoutCopyHint = 0x4dae5635;
+  if (data && data->messageIdNumber == kGeneralLayoutCopyHint) return VK_FALSE;
   std::string text = std::string(severity >= VK_DEBUG_UTILS_MESSAGE_SEVERITY_ERROR_BIT_EXT
                                      ? "validation error: "
                                      : "validation warning: ") +

@@ -6,7 +6,8 @@ namespace qlight::gpu {
 namespace {
 
 constexpr VkPipelineStageFlags2 kCompute = VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT;
-constexpr VkPipelineStageFlags2 kTransfer = VK_PIPELINE_STAGE_2_COPY_BIT | VK_PIPELINE_STAGE_2_CLEAR_BIT;
+// Fill, copy and clear all count as transfer work (the layer files vkCmdFillBuffer under COPY).
+constexpr VkPipelineStageFlags2 kTransfer = VK_PIPELINE_STAGE_2_ALL_TRANSFER_BIT;
 
 bool compatible(VkDescriptorType type, bool isBuffer, bool isView, bool isImage) {
   switch (type) {
@@ -197,7 +198,7 @@ void PassRecorder::recordDispatch(PassBuilder& b, const Buffer* indirect, VkDevi
 
 void PassRecorder::fill(const std::string& name, const Buffer& buffer, uint32_t value) {
   synchronize(name, {{uint64_t((const void*)buffer.handle()), &buffer.name(), Access::Write,
-                      VK_PIPELINE_STAGE_2_CLEAR_BIT, VK_ACCESS_2_TRANSFER_WRITE_BIT}});
+                      kTransfer, VK_ACCESS_2_TRANSFER_WRITE_BIT}});
   if (timer_) timer_->begin(cmd_, name);
   vkCmdFillBuffer(cmd_, buffer.handle(), 0, VK_WHOLE_SIZE, value);
   if (timer_) timer_->end(cmd_);
@@ -206,12 +207,22 @@ void PassRecorder::fill(const std::string& name, const Buffer& buffer, uint32_t 
 void PassRecorder::copy(const std::string& name, const Buffer& src, const Buffer& dst,
                         VkDeviceSize bytes) {
   synchronize(name, {{uint64_t((const void*)src.handle()), &src.name(), Access::Read,
-                      VK_PIPELINE_STAGE_2_COPY_BIT, VK_ACCESS_2_TRANSFER_READ_BIT},
+                      kTransfer, VK_ACCESS_2_TRANSFER_READ_BIT},
                      {uint64_t((const void*)dst.handle()), &dst.name(), Access::Write,
-                      VK_PIPELINE_STAGE_2_COPY_BIT, VK_ACCESS_2_TRANSFER_WRITE_BIT}});
+                      kTransfer, VK_ACCESS_2_TRANSFER_WRITE_BIT}});
   if (timer_) timer_->begin(cmd_, name);
   VkBufferCopy region{0, 0, bytes};
   vkCmdCopyBuffer(cmd_, src.handle(), dst.handle(), 1, &region);
+  if (timer_) timer_->end(cmd_);
+}
+
+void PassRecorder::clear(const std::string& name, const Image& image) {
+  synchronize(name, {{uint64_t((const void*)image.handle()), &image.name(), Access::Write,
+                      kTransfer, VK_ACCESS_2_TRANSFER_WRITE_BIT}});
+  if (timer_) timer_->begin(cmd_, name);
+  VkClearColorValue zero{};
+  VkImageSubresourceRange range{VK_IMAGE_ASPECT_COLOR_BIT, 0, 1, 0, 1};
+  vkCmdClearColorImage(cmd_, image.handle(), VK_IMAGE_LAYOUT_GENERAL, &zero, 1, &range);
   if (timer_) timer_->end(cmd_);
 }
 

@@ -78,6 +78,7 @@ class PassRecorder {
   // Transfer passes, declared the same way.
   void fill(const std::string& name, const Buffer& buffer, uint32_t value);
   void copy(const std::string& name, const Buffer& src, const Buffer& dst, VkDeviceSize bytes);
+  void clear(const std::string& name, const Image& image);
   // Makes every write so far visible to the host and to later submissions.
   void finish();
 

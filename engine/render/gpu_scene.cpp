@@ -1,0 +1,218 @@
+#include "engine/render/gpu_scene.h"
+
+#include <cmath>
+#include <cstdio>
+#include <cstring>
+#include <stdexcept>
+
+#include "shaders/shared/sampling.h"
+
+namespace qlight::render {
+namespace {
+
+using shared::GpuLight;
+using shared::GpuMaterial;
+using shared::GpuTexture;
+using shared::GpuTriangle;
+using shared::GpuVertex;
+
+constexpr float kPi = 3.14159265358979f;
+
+float luminance(glm::vec3 c) { return glm::dot(c, glm::vec3(0.2126f, 0.7152f, 0.0722f)); }
+
+GpuMaterial toGpu(const scene::MaterialAsset& m) {
+  GpuMaterial g{};
+  g.baseColor = m.baseColorFactor;
+  g.emissive = m.emissive;
+  g.metallic = m.metallicFactor;
+  g.roughness = m.roughnessFactor;
+  g.baseColorTexture = m.baseColorTexture;
+  g.metallicRoughnessTexture = m.metallicRoughnessTexture;
+  g.emissiveTexture = m.emissiveTexture;
+  g.flags = m.doubleSided ? shared::kMaterialDoubleSided : 0u;
+  return g;
+}
+
+uint32_t textureFlags(const scene::TextureAsset& t) {
+  uint32_t f = t.srgb ? shared::kTextureSrgb : 0u;
+  if (t.nearestFilter) f |= shared::kTextureNearest;
+  if (t.wrapS == scene::TextureWrap::ClampToEdge) f |= shared::kTextureClampS;
+  if (t.wrapT == scene::TextureWrap::ClampToEdge) f |= shared::kTextureClampT;
+  if (t.wrapS == scene::TextureWrap::MirroredRepeat) f |= shared::kTextureMirrorS;
+  if (t.wrapT == scene::TextureWrap::MirroredRepeat) f |= shared::kTextureMirrorT;
+  return f;
+}
+
+template <class T>
+std::unique_ptr<gpu::Buffer> makeBuffer(const gpu::Context& ctx, const std::vector<T>& data,
+                                        const std::string& name, VkBufferUsageFlags usage = 0) {
+  auto buffer = std::make_unique<gpu::Buffer>(ctx, std::max<size_t>(data.size() * sizeof(T), 16),
+                                              name, usage);
+  if (!data.empty()) buffer->upload(ctx, data.data(), data.size() * sizeof(T));
+  return buffer;
+}
+
+}  // namespace
+
+GpuScene::GpuScene(const gpu::Context& ctx, const scene::SceneAsset& asset,
+                   SceneLightingOptions options)
+    : ctx_(ctx), asset_(asset), options_(options) {
+  center_ = asset.bounds.center();
+  radius_ = std::max(asset.bounds.radius(), 1e-3f);
+  uploadStatic();
+  accel_.buildMeshes(asset.meshes);
+}
+
+void GpuScene::uploadStatic() {
+  std::vector<GpuVertex> vertices;
+  for (const scene::MeshAsset& mesh : asset_.meshes) {
+    meshFirstVertex_.push_back(uint32_t(vertices.size()));
+    meshFirstTriangle_.push_back(uint32_t(triangles_.size()));
+    for (size_t i = 0; i < mesh.positions.size(); ++i)
+      vertices.push_back({mesh.positions[i], mesh.normals[i], mesh.uv0[i]});
+    for (size_t t = 0; t < mesh.triangleCount(); ++t) {
+      GpuTriangle tri{};
+      tri.v0 = meshFirstVertex_.back() + mesh.indices[t * 3];
+      tri.v1 = meshFirstVertex_.back() + mesh.indices[t * 3 + 1];
+      tri.v2 = meshFirstVertex_.back() + mesh.indices[t * 3 + 2];
+      tri.material = mesh.triangleMaterials[t];
+      tri.light = shared::kNoLight;
+      triangles_.push_back(tri);
+    }
+  }
+  triangleCount_ = uint32_t(triangles_.size());
+  std::vector<GpuMaterial> materials;
+  for (auto& m : asset_.materials) materials.push_back(toGpu(m));
+  if (materials.empty()) materials.push_back(toGpu(scene::MaterialAsset{}));
+
+  std::vector<GpuTexture> textures;
+  std::vector<uint32_t> texels;
+  for (const scene::TextureAsset& t : asset_.textures) {
+    textures.push_back({uint32_t(texels.size()), t.width, t.height, textureFlags(t)});
+    size_t n = size_t(t.width) * t.height;
+    size_t start = texels.size();
+    texels.resize(start + n);
+    std::memcpy(texels.data() + start, t.rgba8.data(), n * 4);
+  }
+  if (texels.empty()) texels.push_back(0xffffffffu);
+  if (textures.empty()) textures.push_back({0, 1, 1, 0});
+
+  vertices_ = makeBuffer(ctx_, vertices, "scene.vertices");
+  materials_ = makeBuffer(ctx_, materials, "scene.materials");
+  textures_ = makeBuffer(ctx_, textures, "scene.textures");
+  texels_ = makeBuffer(ctx_, texels, "scene.texels", VK_BUFFER_USAGE_UNIFORM_TEXEL_BUFFER_BIT);
+  texelView_ = std::make_unique<gpu::BufferView>(ctx_, *texels_, VK_FORMAT_R32_UINT);
+}
+
+void GpuScene::uploadLights(const SceneDraw& draw) {
+  lights_.clear();
+  for (GpuTriangle& t : triangles_) t.light = shared::kNoLight;
+  // Emissive triangles, in world space at this frame.
+  for (const MeshDraw& d : draw.meshes) {
+    const scene::MeshAsset& mesh = asset_.meshes[d.mesh];
+    bool mirrored = glm::determinant(glm::mat3(d.worldFromObject)) < 0.0f;
+    for (size_t t = 0; t < mesh.triangleCount(); ++t) {
+      const scene::MaterialAsset& m = asset_.materials[mesh.triangleMaterials[t]];
+      if (!m.isEmissive()) continue;
+      glm::vec3 p[3];
+      for (int k = 0; k < 3; ++k)
+        p[k] = glm::vec3(d.worldFromObject * glm::vec4(mesh.positions[mesh.indices[t * 3 + k]], 1.0f));
+      GpuLight l{};
+      l.type = shared::kLightTriangle;
+      l.position = p[0];
+      l.edge1 = p[1] - p[0];
+      l.edge2 = p[2] - p[0];
+      l.area = 0.5f * glm::length(glm::cross(l.edge1, l.edge2));
+      if (!(l.area > 0.0f)) continue;  // degenerate: cannot be sampled or hit
+      l.triangle = meshFirstTriangle_[d.mesh] + uint32_t(t);
+      l.emission = m.emissive;
+      l.flags = (m.doubleSided ? shared::kLightDoubleSided : 0u) |
+                (mirrored ? shared::kLightMirrored : 0u);
+      l.power = luminance(m.emissive) * l.area * kPi * (m.doubleSided ? 2.0f : 1.0f);
+      // A triangle instanced twice is one light per instance; the hit maps to the last.
+      triangles_[l.triangle].light = uint32_t(lights_.size());
+      lights_.push_back(l);
+    }
+  }
+  for (const PunctualDraw& d : draw.lights) {
+    GpuLight l{};
+    const scene::LightAsset& a = d.light;
+    l.emission = a.color * a.intensity;
+    l.position = glm::vec3(d.worldFromLight[3]);
+    l.edge1 = glm::normalize(glm::vec3(d.worldFromLight * glm::vec4(0, 0, -1, 0)));
+    l.range = a.range;
+    l.cosInner = std::cos(a.innerConeAngle);
+    l.cosOuter = std::cos(a.outerConeAngle);
+    float lum = luminance(l.emission);
+    if (a.type == scene::LightType::Point) {
+      l.type = shared::kLightPoint;
+      l.power = 4.0f * kPi * lum;
+    } else if (a.type == scene::LightType::Spot) {
+      l.type = shared::kLightSpot;
+      l.power = 2.0f * kPi * (1.0f - 0.5f * (l.cosInner + l.cosOuter)) * lum;
+    } else {
+      l.type = shared::kLightDirectional;
+      l.power = kPi * radius_ * radius_ * lum;
+    }
+    if (l.power > 0.0f && std::isfinite(l.power)) lights_.push_back(l);
+  }
+  fallbackSky_ = lights_.empty() && options_.fallbackSkyRadiance > 0.0f;
+  if (fallbackSky_) {
+    GpuLight sky{};
+    sky.type = shared::kLightSky;  // must be the last light (the shader looks there on a miss)
+    sky.emission = glm::vec3(options_.fallbackSkyRadiance);
+    sky.power = 1.0f;
+    lights_.push_back(sky);
+  }
+  lightCount_ = uint32_t(lights_.size());
+  std::vector<float> cdf;
+  float running = 0.0f;
+  for (const GpuLight& l : lights_) cdf.push_back(running += l.power);
+  if (cdf.empty()) cdf.push_back(0.0f);
+
+  lightBuffer_ = makeBuffer(ctx_, lights_, "scene.lights");
+  lightCdf_ = makeBuffer(ctx_, cdf, "scene.lightCdf");
+  triangleBuffer_ = makeBuffer(ctx_, triangles_, "scene.triangles");
+}
+
+void GpuScene::update(const SceneDraw& draw) {
+  for (const MeshDraw& d : draw.meshes)
+    if (d.mesh >= asset_.meshes.size()) throw std::out_of_range("mesh draw names no mesh");
+  accel_.buildInstances(draw.meshes);
+  std::vector<shared::GpuInstance> instances;
+  for (const MeshDraw& d : draw.meshes) {
+    shared::GpuInstance inst{};
+    glm::mat3 n = glm::transpose(glm::inverse(glm::mat3(d.worldFromObject)));
+    for (int r = 0; r < 3; ++r) inst.normalFromObject[r] = glm::vec4(n[0][r], n[1][r], n[2][r], 0.0f);
+    inst.firstTriangle = meshFirstTriangle_[d.mesh];
+    inst.mesh = d.mesh;
+    instances.push_back(inst);
+  }
+  instances_ = makeBuffer(ctx_, instances, "scene.instances");
+  constexpr VkBufferUsageFlags texel = VK_BUFFER_USAGE_UNIFORM_TEXEL_BUFFER_BIT;
+  bvhNodes_ = makeBuffer(ctx_, accel_.nodeTexels(), "bvh.nodes", texel);
+  bvhTris_ = makeBuffer(ctx_, accel_.triangleTexels(), "bvh.triangles", texel);
+  bvhInstances_ = makeBuffer(ctx_, accel_.instanceTexels(), "bvh.instances", texel);
+  bvhNodesView_ = std::make_unique<gpu::BufferView>(ctx_, *bvhNodes_, VK_FORMAT_R32G32B32A32_SFLOAT);
+  bvhTrisView_ = std::make_unique<gpu::BufferView>(ctx_, *bvhTris_, VK_FORMAT_R32G32B32A32_SFLOAT);
+  bvhInstancesView_ =
+      std::make_unique<gpu::BufferView>(ctx_, *bvhInstances_, VK_FORMAT_R32G32B32A32_SFLOAT);
+  uploadLights(draw);
+}
+
+void GpuScene::bind(gpu::PassBuilder& pass) const {
+  if (!instances_) throw std::logic_error("GpuScene::update must run before the first frame");
+  pass.read(QL_BIND_BVH_NODES, *bvhNodesView_)
+      .read(QL_BIND_BVH_TRIS, *bvhTrisView_)
+      .read(QL_BIND_BVH_INSTANCES, *bvhInstancesView_)
+      .read(QL_BIND_TRIANGLES, *triangleBuffer_)
+      .read(QL_BIND_VERTICES, *vertices_)
+      .read(QL_BIND_INSTANCES, *instances_)
+      .read(QL_BIND_MATERIALS, *materials_)
+      .read(QL_BIND_TEXTURES, *textures_)
+      .read(QL_BIND_TEXELS, *texelView_)
+      .read(QL_BIND_LIGHTS, *lightBuffer_)
+      .read(QL_BIND_LIGHT_CDF, *lightCdf_);
+}
+
+}  // namespace qlight::render

@@ -1,0 +1,65 @@
+// The scene on the GPU: geometry, materials and textures uploaded once; the
+// two-level BVH, instance table and world-space light list refreshed when
+// instances or lights move.
+#pragma once
+#include <memory>
+
+#include "engine/gpu/buffer.h"
+#include "engine/gpu/pass_recorder.h"
+#include "engine/render/scene_accel.h"
+#include "engine/render/scene_draw.h"
+#include "engine/scene/scene_asset.h"
+#include "shaders/shared/scene_types.h"
+
+namespace qlight::render {
+
+struct SceneLightingOptions {
+  // Radiance of the uniform sky added when the scene has no emitter at all, so
+  // that a glTF without lights renders visibly instead of black (documented fallback).
+  float fallbackSkyRadiance = 1.0f;
+};
+
+class GpuScene {
+ public:
+  GpuScene(const gpu::Context& ctx, const scene::SceneAsset& asset,
+           SceneLightingOptions options = {});
+
+  // Rebuilds the top-level BVH, the instance table and the light list. Replaces
+  // buffers, so no recorded frame that uses them may still be in flight.
+  void update(const SceneDraw& draw);
+
+  // Binds every scene buffer of path_trace.comp-style shaders.
+  void bind(gpu::PassBuilder& pass) const;
+
+  uint32_t lightCount() const { return lightCount_; }
+  bool usesFallbackSky() const { return fallbackSky_; }
+  uint32_t triangleCount() const { return triangleCount_; }
+  const glm::vec3& boundsCenter() const { return center_; }
+  float boundsRadius() const { return radius_; }
+  const std::vector<shared::GpuLight>& lights() const { return lights_; }
+
+ private:
+  void uploadStatic();
+  void uploadLights(const SceneDraw& draw);
+
+  const gpu::Context& ctx_;
+  const scene::SceneAsset& asset_;
+  SceneLightingOptions options_;
+  std::vector<uint32_t> meshFirstTriangle_;  // into the GpuTriangle array
+  std::vector<uint32_t> meshFirstVertex_;
+  std::vector<shared::GpuTriangle> triangles_;
+  SceneAccel accel_;
+  std::vector<shared::GpuLight> lights_;
+  uint32_t lightCount_ = 0;
+  uint32_t triangleCount_ = 0;
+  bool fallbackSky_ = false;
+  glm::vec3 center_{0.0f};
+  float radius_ = 1.0f;
+
+  std::unique_ptr<gpu::Buffer> vertices_, triangleBuffer_, materials_, textures_, texels_;
+  std::unique_ptr<gpu::BufferView> texelView_;
+  std::unique_ptr<gpu::Buffer> bvhNodes_, bvhTris_, bvhInstances_, instances_, lightBuffer_, lightCdf_;
+  std::unique_ptr<gpu::BufferView> bvhNodesView_, bvhTrisView_, bvhInstancesView_;
+};
+
+}  // namespace qlight::render

@@ -1,0 +1,129 @@
+#include "engine/render/path_tracer.h"
+
+#include <cmath>
+#include <stdexcept>
+
+#include "engine/gpu/pass_recorder.h"
+
+namespace qlight::render {
+
+using shared::FrameUniforms;
+
+FrameCounters& FrameCounters::operator+=(const FrameCounters& o) {
+  rays += o.rays;
+  shadowRays += o.shadowRays;
+  paths += o.paths;
+  emitterHits += o.emitterHits;
+  pathVertices += o.pathVertices;
+  invalidSamples += o.invalidSamples;
+  return *this;
+}
+
+PathTracer::PathTracer(const gpu::Context& ctx, const RenderSettings& settings)
+    : ctx_(ctx),
+      trace_(ctx, "path_trace"),
+      frameUniforms_(ctx, sizeof(FrameUniforms), "frame.uniforms", 0, gpu::MemoryUse::HostVisible),
+      stats_(ctx, shared::kStatCount * sizeof(uint32_t), "frame.stats") {
+  setSettings(settings);
+}
+
+void PathTracer::setSettings(const RenderSettings& s) {
+  if (s.width == 0 || s.height == 0 || s.width > 16384 || s.height > 16384)
+    throw std::invalid_argument("resolution must be 1..16384 in each direction");
+  if (s.samplesPerFrame == 0 || s.samplesPerFrame > 4096)
+    throw std::invalid_argument("samples per frame must be 1..4096");
+  if (s.maxDepth > 1024) throw std::invalid_argument("max depth must be 0..1024");
+  if (!(s.exposure > 0.0f) || !std::isfinite(s.exposure))
+    throw std::invalid_argument("exposure must be a positive finite number");
+  bool resize = !accum_ || accum_->width() != s.width || accum_->height() != s.height;
+  settings_ = s;
+  if (resize)
+    accum_ = std::make_unique<gpu::Image>(ctx_, s.width, s.height, VK_FORMAT_R32G32B32A32_SFLOAT,
+                                          "accumulation");
+  resetAccumulation();
+}
+
+void PathTracer::resetAccumulation() {
+  clearPending_ = true;
+  accumulated_ = 0;
+  // sampleCounter_ keeps running: restarted accumulations (a moving camera)
+  // must not repeat the previous frame's noise pattern.
+}
+
+void PathTracer::recordFrame(gpu::PassRecorder& rec, const GpuScene& scene,
+                             const CameraView& camera) {
+  if (!cameraValid_ || !(camera == lastCamera_)) {
+    if (cameraValid_) resetAccumulation();
+    lastCamera_ = camera;
+    cameraValid_ = true;
+  }
+  if (clearPending_) {
+    rec.clear("accumulate.clear", *accum_);
+    clearPending_ = false;
+  }
+  rec.fill("stats.clear", stats_, 0);
+
+  FrameUniforms u{};
+  glm::vec3 forward = glm::normalize(camera.forward);
+  glm::vec3 right = glm::normalize(glm::cross(forward, camera.up));
+  u.camera.position = camera.position;
+  u.camera.forward = forward;
+  u.camera.right = right;
+  u.camera.up = glm::cross(right, forward);
+  u.camera.tanHalfFovY = std::tan(0.5f * camera.yfov);
+  u.camera.aspect = float(settings_.width) / float(settings_.height);
+  u.resolution = glm::uvec2(settings_.width, settings_.height);
+  u.frameIndex = sampleCounter_;
+  u.seed = settings_.seed;
+  u.maxDepth = settings_.maxDepth;
+  u.flags = settings_.russianRoulette ? shared::kFlagRussianRoulette : 0u;
+  switch (settings_.estimator) {
+    case Estimator::Mis: u.flags |= shared::kFlagNee | shared::kFlagEmitterHits | shared::kFlagMis; break;
+    case Estimator::BsdfOnly: u.flags |= shared::kFlagEmitterHits; break;
+    case Estimator::NeeOnly: u.flags |= shared::kFlagNee; break;
+  }
+  u.lightCount = scene.lightCount();
+  u.samplesPerFrame = settings_.samplesPerFrame;
+  u.sceneCenter = scene.boundsCenter();
+  u.sceneRadius = scene.boundsRadius();
+  frameUniforms_.upload(ctx_, &u, sizeof(u));
+
+  for (uint32_t s = 0; s < settings_.samplesPerFrame; ++s) {
+    auto pass = rec.pass("path_trace", trace_);
+    scene.bind(pass);
+    pass.read(QL_BIND_FRAME, frameUniforms_)
+        .write(QL_BIND_ACCUM, *accum_)
+        .write(QL_BIND_STATS, stats_)
+        .push(shared::TracePush{s, 0, 0, 0})
+        .dispatchThreads(settings_.width, settings_.height);
+  }
+  sampleCounter_ += settings_.samplesPerFrame;
+  accumulated_ += settings_.samplesPerFrame;
+}
+
+FrameCounters PathTracer::collectCounters() {
+  auto raw = stats_.read<uint32_t>(ctx_);
+  FrameCounters c;
+  c.rays = raw[shared::kStatRays];
+  c.shadowRays = raw[shared::kStatShadowRays];
+  c.paths = raw[shared::kStatPaths];
+  c.emitterHits = raw[shared::kStatEmitterHits];
+  c.pathVertices = raw[shared::kStatPathVertices];
+  c.invalidSamples = raw[shared::kStatInvalidSamples];
+  return c;
+}
+
+LinearImage PathTracer::readImage() const {
+  LinearImage img;
+  img.width = settings_.width;
+  img.height = settings_.height;
+  img.rgba = accum_->readFloats(ctx_);
+  for (size_t i = 0; i < img.rgba.size(); i += 4) {
+    float n = img.rgba[i + 3];
+    for (int c = 0; c < 3; ++c) img.rgba[i + c] = n > 0.0f ? img.rgba[i + c] / n : 0.0f;
+    img.rgba[i + 3] = 1.0f;
+  }
+  return img;
+}
+
+}  // namespace qlight::render

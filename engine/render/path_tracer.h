@@ -1,0 +1,61 @@
+// The path tracing passes: trace (one sample per pixel per dispatch) into an
+// accumulation image, with per-frame counters and GPU timings. Accumulation
+// runs while nothing changes and restarts when the camera, the scene or a
+// setting does.
+#pragma once
+#include <map>
+#include <memory>
+#include <string>
+
+#include "engine/gpu/compute_pipeline.h"
+#include "engine/gpu/gpu_timer.h"
+#include "engine/gpu/image.h"
+#include "engine/render/gpu_scene.h"
+#include "engine/render/image_io.h"
+#include "engine/render/render_settings.h"
+
+namespace qlight::render {
+
+struct FrameCounters {
+  uint64_t rays = 0, shadowRays = 0, paths = 0, emitterHits = 0, pathVertices = 0,
+           invalidSamples = 0;
+  FrameCounters& operator+=(const FrameCounters& o);
+};
+
+class PathTracer {
+ public:
+  PathTracer(const gpu::Context& ctx, const RenderSettings& settings);
+
+  // Changes settings; restarts accumulation (and reallocates on a new resolution).
+  void setSettings(const RenderSettings& settings);
+  const RenderSettings& settings() const { return settings_; }
+  void resetAccumulation();
+  // The batch size alone does not change the image: accumulation goes on.
+  void setSamplesPerFrame(uint32_t n) { settings_.samplesPerFrame = n; }
+  uint32_t accumulatedSamples() const { return accumulated_; }
+
+  // Records settings.samplesPerFrame samples of `scene` seen from `camera`.
+  // The camera moving restarts accumulation.
+  void recordFrame(gpu::PassRecorder& recorder, const GpuScene& scene, const CameraView& camera);
+  // After the frame's fence: its counters (the stats buffer is cleared for the next frame).
+  FrameCounters collectCounters();
+
+  const gpu::Image& accumulation() const { return *accum_; }
+  // Mean radiance per pixel (waits for the GPU).
+  LinearImage readImage() const;
+
+ private:
+  const gpu::Context& ctx_;
+  RenderSettings settings_;
+  gpu::ComputePipeline trace_;
+  std::unique_ptr<gpu::Image> accum_;
+  gpu::Buffer frameUniforms_;
+  gpu::Buffer stats_;
+  CameraView lastCamera_;
+  bool cameraValid_ = false;
+  bool clearPending_ = true;
+  uint32_t accumulated_ = 0;
+  uint32_t sampleCounter_ = 0;  // seeds: never reused within one accumulation
+};
+
+}  // namespace qlight::render

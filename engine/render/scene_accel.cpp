@@ -1,0 +1,36 @@
+#include "engine/render/scene_accel.h"
+
+#include "engine/bvh/scene_bvh.h"
+
+namespace qlight::render {
+
+struct SceneAccel::Impl {
+  bvh::SceneBvh bvh;
+};
+
+SceneAccel::SceneAccel() : impl_(std::make_unique<Impl>()) {}
+SceneAccel::~SceneAccel() = default;
+SceneAccel::SceneAccel(SceneAccel&&) noexcept = default;
+SceneAccel& SceneAccel::operator=(SceneAccel&&) noexcept = default;
+
+void SceneAccel::buildMeshes(const std::vector<scene::MeshAsset>& meshes) {
+  for (const scene::MeshAsset& m : meshes) impl_->bvh.addMesh(m.positions, m.indices);
+}
+
+void SceneAccel::buildInstances(const std::vector<MeshDraw>& draws) {
+  std::vector<bvh::Instance> instances;
+  instances.reserve(draws.size());
+  for (uint32_t i = 0; i < draws.size(); ++i)
+    instances.push_back({draws[i].worldFromObject, draws[i].mesh, i});
+  impl_->bvh.rebuildTopLevel(instances);
+}
+
+const std::vector<glm::vec4>& SceneAccel::nodeTexels() const { return impl_->bvh.flat().nodes; }
+const std::vector<glm::vec4>& SceneAccel::triangleTexels() const {
+  return impl_->bvh.flat().triangles;
+}
+const std::vector<glm::vec4>& SceneAccel::instanceTexels() const {
+  return impl_->bvh.flat().instances;
+}
+
+}  // namespace qlight::render

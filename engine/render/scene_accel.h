@@ -1,0 +1,32 @@
+// The scene's two-level BVH as texel arrays ready for upload: BLASes built once
+// per mesh, the TLAS rebuilt when instances move.
+#pragma once
+#include <glm/glm.hpp>
+#include <memory>
+#include <vector>
+
+#include "engine/render/scene_draw.h"
+#include "engine/scene/scene_asset.h"
+
+namespace qlight::render {
+
+class SceneAccel {
+ public:
+  SceneAccel();
+  ~SceneAccel();
+  SceneAccel(SceneAccel&&) noexcept;
+  SceneAccel& operator=(SceneAccel&&) noexcept;
+
+  void buildMeshes(const std::vector<scene::MeshAsset>& meshes);
+  void buildInstances(const std::vector<MeshDraw>& draws);
+
+  const std::vector<glm::vec4>& nodeTexels() const;
+  const std::vector<glm::vec4>& triangleTexels() const;
+  const std::vector<glm::vec4>& instanceTexels() const;
+
+ private:
+  struct Impl;
+  std::unique_ptr<Impl> impl_;
+};
+
+}  // namespace qlight::render

@@ -1,0 +1,46 @@
+#include "engine/render/stats_json.h"
+
+#include <fstream>
+#include <stdexcept>
+
+namespace qlight::render {
+
+nlohmann::json statsToJson(const RenderStats& s) {
+  const FrameCounters& c = s.counters;
+  double paths = double(std::max<uint64_t>(c.paths, 1));
+  nlohmann::json j;
+  j["width"] = s.width;
+  j["height"] = s.height;
+  j["spp"] = s.spp;
+  j["frames"] = s.frames;
+  j["seconds"] = s.seconds;
+  j["rays"] = c.rays;
+  j["shadow_rays"] = c.shadowRays;
+  j["rays_per_second"] = s.seconds > 0 ? double(c.rays) / s.seconds : 0.0;
+  j["paths"] = c.paths;
+  j["emitter_hit_share"] = double(c.emitterHits) / paths;
+  j["mean_path_length"] = double(c.pathVertices) / paths;
+  j["invalid_samples"] = c.invalidSamples;
+  j["device"] = s.device;
+  j["lights"] = s.lights;
+  j["fallback_sky"] = s.fallbackSky;
+  nlohmann::json gpu = nlohmann::json::object();
+  double total = 0;
+  for (auto& [name, ms] : s.gpuMs) {
+    gpu[name] = {{"total_ms", ms}, {"ms_per_frame", ms / std::max(1u, s.frames)}};
+    total += ms;
+  }
+  j["gpu_ms"] = gpu;
+  j["gpu_ms_total"] = total;
+  return j;
+}
+
+void writeJson(const std::filesystem::path& path, const nlohmann::json& json) {
+  if (path.has_parent_path()) std::filesystem::create_directories(path.parent_path());
+  std::ofstream out(path);
+  if (!out) throw std::runtime_error(path.string() + ": cannot open for writing");
+  out << json.dump(2) << "\n";
+  if (!out) throw std::runtime_error(path.string() + ": write failed");
+}
+
+}  // namespace qlight::render

@@ -1,0 +1,14 @@
+// The stats file of a render: what was rendered, how fast, and the measures
+// the papers use (emitter hit share, mean path length).
+#pragma once
+#include <filesystem>
+#include <nlohmann/json.hpp>
+
+#include "engine/render/offline_render.h"
+
+namespace qlight::render {
+
+nlohmann::json statsToJson(const RenderStats& stats);
+void writeJson(const std::filesystem::path& path, const nlohmann::json& json);
+
+}  // namespace qlight::render

@@ -1,0 +1,14 @@
+// `qlight demo`: the flythrough. With a display it opens a window with the UI;
+// without one (or with --headless) it renders the same timeline to images and a
+// stats file.
+#pragma once
+#include <CLI/CLI.hpp>
+#include <functional>
+
+#include "game/cli_options.h"
+
+namespace qlight::game {
+
+std::function<int()> addDemoCommand(CLI::App& app, const CommonOptions& common);
+
+}  // namespace qlight::game

@@ -1,0 +1,66 @@
+#include "game/render_command.h"
+
+#include <cstdio>
+#include <memory>
+
+#include "engine/gpu/context.h"
+#include "engine/render/offline_render.h"
+#include "engine/render/stats_json.h"
+#include "engine/scene/gltf_loader.h"
+#include "game/context_setup.h"
+
+namespace qlight::game {
+namespace {
+
+struct RenderArgs {
+  std::string scene;
+  std::string out;
+  std::string statsJson;
+  uint32_t spp = 64;
+  uint32_t batch = 4;
+  float time = 0.0f;
+  render::RenderSettings settings;
+};
+
+int runRender(const RenderArgs& a, const CommonOptions& common) {
+  scene::SceneAsset asset = scene::loadGltf(a.scene);
+  auto ctx = createContext(common, /*windowed=*/false);
+  render::RenderSettings s = a.settings;
+  s.samplesPerFrame = std::min(a.batch, a.spp);
+  render::OfflineRender result = render::renderScene(*ctx, asset, s, a.spp, a.time);
+  render::writeImage(a.out, result.image, s.exposure, s.tonemap);
+  nlohmann::json stats = render::statsToJson(result.stats);
+  stats["scene"] = a.scene;
+  stats["time"] = a.time;
+  stats["max_depth"] = s.maxDepth;
+  stats["seed"] = s.seed;
+  stats["estimator"] = s.estimator == render::Estimator::Mis ? "mis"
+                       : s.estimator == render::Estimator::BsdfOnly ? "bsdf" : "nee";
+  stats["russian_roulette"] = s.russianRoulette;
+  if (!a.statsJson.empty()) render::writeJson(a.statsJson, stats);
+  std::printf("qlight: %s -> %s: %ux%u, %u spp in %.2f s, %.2f Mrays/s\n", a.scene.c_str(),
+              a.out.c_str(), s.width, s.height, result.stats.spp, result.stats.seconds,
+              stats["rays_per_second"].get<double>() * 1e-6);
+  return finishContext(*ctx);
+}
+
+}  // namespace
+
+std::function<int()> addRenderCommand(CLI::App& app, const CommonOptions& common) {
+  auto args = std::make_shared<RenderArgs>();
+  CLI::App* cmd = app.add_subcommand("render", "render one image headless");
+  cmd->add_option("--scene", args->scene, "glTF scene (.gltf or .glb)")->required();
+  cmd->add_option("--out", args->out, "output image (.png, .pfm or .exr)")->required();
+  cmd->add_option("--spp", args->spp, "samples per pixel")->check(CLI::Range(1, 1 << 20));
+  cmd->add_option("--batch", args->batch, "samples per pixel per GPU submission")
+      ->check(CLI::Range(1, 4096));
+  cmd->add_option("--time", args->time, "animation time in seconds")->check(CLI::Range(0.0, 1e6));
+  cmd->add_option("--stats-json", args->statsJson, "write render statistics here");
+  addRenderOptions(*cmd, args->settings);
+  return [cmd, args, &common]() -> int {
+    if (!cmd->parsed()) return -1;
+    return runRender(*args, common);
+  };
+}
+
+}  // namespace qlight::game

@@ -1,0 +1,13 @@
+// `qlight render`: one image of a scene at a given time, with a stats file.
+#pragma once
+#include <CLI/CLI.hpp>
+#include <functional>
+
+#include "game/cli_options.h"
+
+namespace qlight::game {
+
+// Registers the subcommand; the returned function runs it (exit code).
+std::function<int()> addRenderCommand(CLI::App& app, const CommonOptions& common);
+
+}  // namespace qlight::game

@@ -1,0 +1,109 @@
+// Light selection (by power, from an inclusive CDF) and light sampling for
+// next event estimation, plus the pdf of hitting a light by a scattered ray.
+layout(binding = QL_BIND_LIGHTS, scalar) readonly buffer Lights { GpuLight lights[]; };
+layout(binding = QL_BIND_LIGHT_CDF, scalar) readonly buffer LightCdf { float lightCdf[]; };
+
+struct LightSample {
+  vec3 direction;  // unit, from the shading point to the light
+  float distance;  // to the light point; infinite for directional and sky
+  vec3 radiance;   // arriving radiance (or intensity / d^2 for punctual lights)
+  float pdf;       // solid-angle pdf including selection; 0: no sample
+  bool delta;      // punctual or directional: cannot be hit by a scattered ray
+};
+
+uint selectLight(float u, uint count, out float selectPdf) {
+  float total = lightCdf[count - 1u];
+  float target = u * total;
+  uint lo = 0u, hi = count - 1u;
+  while (lo < hi) {
+    uint mid = (lo + hi) >> 1u;
+    if (lightCdf[mid] <= target) lo = mid + 1u; else hi = mid;
+  }
+  float below = lo > 0u ? lightCdf[lo - 1u] : 0.0;
+  selectPdf = (lightCdf[lo] - below) / total;
+  return lo;
+}
+
+float lightSelectPdf(uint index, uint count) {
+  float below = index > 0u ? lightCdf[index - 1u] : 0.0;
+  return (lightCdf[index] - below) / lightCdf[count - 1u];
+}
+
+vec3 triangleLightNormal(GpuLight l) {
+  vec3 n = normalize(cross(l.edge1, l.edge2));
+  return (l.flags & kLightMirrored) != 0u ? -n : n;
+}
+
+// Emission of an emissive triangle at barycentrics (b1, b2), texture included.
+vec3 triangleLightRadiance(GpuLight l, vec2 b) {
+  GpuTriangle tri = triangles[l.triangle];
+  GpuMaterial m = materials[tri.material];
+  if (m.emissiveTexture < 0) return l.emission;
+  vec2 uv = (1.0 - b.x - b.y) * vertices[tri.v0].uv + b.x * vertices[tri.v1].uv + b.y * vertices[tri.v2].uv;
+  return l.emission * sampleTexture(m.emissiveTexture, uv).rgb;
+}
+
+// Solid-angle pdf of sampling direction `dir` toward a point on triangle light `l`
+// at distance `dist`, selection included (MIS for scattered rays that hit it).
+float triangleLightPdf(GpuLight l, float selectPdf, vec3 dir, float dist) {
+  float cosLight = abs(dot(triangleLightNormal(l), dir));
+  return cosLight > 0.0 ? selectPdf * dist * dist / (l.area * cosLight) : 0.0;
+}
+
+float skyLightPdf(float selectPdf) { return selectPdf * uniformSpherePdf(); }
+
+LightSample sampleLight(vec3 x, vec3 u, uint count) {
+  LightSample s;
+  s.pdf = 0.0;
+  s.delta = false;
+  s.distance = 1e30;
+  s.radiance = vec3(0.0);
+  s.direction = vec3(0.0, 0.0, 1.0);
+  float selectPdf;
+  uint index = selectLight(u.z, count, selectPdf);
+  GpuLight l = lights[index];
+  if (l.type == kLightTriangle) {
+    vec3 bary = sampleTriangleBarycentrics(u.xy);
+    vec3 p = l.position + bary.y * l.edge1 + bary.z * l.edge2;
+    vec3 d = p - x;
+    float dist = length(d);
+    if (!(dist > 0.0)) return s;
+    s.direction = d / dist;
+    s.distance = dist;
+    float cosLight = dot(triangleLightNormal(l), -s.direction);
+    if (cosLight <= 0.0 && (l.flags & kLightDoubleSided) == 0u) return s;
+    s.radiance = triangleLightRadiance(l, bary.yz);
+    s.pdf = triangleLightPdf(l, selectPdf, s.direction, dist);
+  } else if (l.type == kLightPoint || l.type == kLightSpot) {
+    vec3 d = l.position - x;
+    float dist2 = dot(d, d);
+    if (!(dist2 > 0.0)) return s;
+    float dist = sqrt(dist2);
+    s.direction = d / dist;
+    s.distance = dist;
+    float attenuation = 1.0 / dist2;
+    if (l.range > 0.0) {  // KHR_lights_punctual's recommended smooth range window
+      float r = dist / l.range;
+      attenuation *= clamp(1.0 - r * r * r * r, 0.0, 1.0) * clamp(1.0 - r * r * r * r, 0.0, 1.0);
+    }
+    if (l.type == kLightSpot) {
+      float cd = dot(l.edge1, -s.direction);
+      float scale = 1.0 / max(0.001, l.cosInner - l.cosOuter);
+      float a = clamp((cd - l.cosOuter) * scale, 0.0, 1.0);
+      attenuation *= a * a;
+    }
+    s.radiance = l.emission * attenuation;
+    s.pdf = selectPdf;
+    s.delta = true;
+  } else if (l.type == kLightDirectional) {
+    s.direction = -l.edge1;
+    s.radiance = l.emission;
+    s.pdf = selectPdf;
+    s.delta = true;
+  } else {  // sky
+    s.direction = sampleUniformSphere(u.xy);
+    s.radiance = l.emission;
+    s.pdf = skyLightPdf(selectPdf);
+  }
+  return s;
+}

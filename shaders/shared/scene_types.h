@@ -1,0 +1,154 @@
+// The scene and frame as the path tracer sees them: GPU structs shared by GLSL
+// (scalar block layout) and C++, and the binding numbers of path_trace.comp.
+#ifndef QLIGHT_SHARED_SCENE_TYPES_H
+#define QLIGHT_SHARED_SCENE_TYPES_H
+#include "common.h"
+
+QL_BEGIN
+
+// One triangle's shading data; BVH hits map to it through GpuInstance.firstTriangle.
+struct GpuTriangle {
+  uint v0, v1, v2;  // indices into the vertex array (already offset per mesh)
+  uint material;
+  uint light;       // index into the light list when emissive, else kNoLight
+  uint pad0, pad1, pad2;
+};
+QL_CHECK_SIZE(GpuTriangle, 32);
+QL_CONST uint kNoLight = 0xffffffffu;
+
+struct GpuVertex {
+  vec3 position;  // object space
+  vec3 normal;    // object space
+  vec2 uv;
+};
+QL_CHECK_SIZE(GpuVertex, 32);
+
+// Per BVH instance: where its mesh's triangles start and how to move normals to world space.
+struct GpuInstance {
+  vec4 normalFromObject[3];  // rows of transpose(inverse(M)) (xyz), w unused
+  uint firstTriangle;
+  uint mesh;
+  uint pad0, pad1;
+};
+QL_CHECK_SIZE(GpuInstance, 64);
+
+QL_CONST uint kMaterialDoubleSided = 1u;
+
+struct GpuMaterial {
+  vec4 baseColor;  // linear RGBA
+  vec3 emissive;   // linear radiance (factor x strength)
+  float metallic;
+  float roughness;
+  int baseColorTexture;  // -1: none
+  int metallicRoughnessTexture;
+  int emissiveTexture;
+  uint flags;
+  uint pad0, pad1, pad2;
+};
+QL_CHECK_SIZE(GpuMaterial, 64);
+
+// Textures live in one uint texel buffer (RGBA8 packed), each at an offset.
+QL_CONST uint kTextureSrgb = 1u;
+QL_CONST uint kTextureNearest = 2u;
+QL_CONST uint kTextureClampS = 4u;
+QL_CONST uint kTextureClampT = 8u;
+QL_CONST uint kTextureMirrorS = 16u;
+QL_CONST uint kTextureMirrorT = 32u;
+struct GpuTexture {
+  uint offset;
+  uint width;
+  uint height;
+  uint flags;
+};
+QL_CHECK_SIZE(GpuTexture, 16);
+
+QL_CONST uint kLightTriangle = 0u;
+QL_CONST uint kLightPoint = 1u;
+QL_CONST uint kLightSpot = 2u;
+QL_CONST uint kLightDirectional = 3u;
+QL_CONST uint kLightSky = 4u;  // uniform environment, the fallback for scenes without emitters
+QL_CONST uint kLightDoubleSided = 1u;
+QL_CONST uint kLightMirrored = 2u;  // triangle under a mirroring transform: front normal is -(e1 x e2)
+
+struct GpuLight {
+  vec3 position;  // triangle: world vertex 0; point/spot: position
+  uint type;
+  vec3 edge1;     // triangle: v1 - v0; spot/directional: unit direction the light points to
+  uint triangle;  // triangle: its GpuTriangle index (for emissive textures)
+  vec3 edge2;     // triangle: v2 - v0
+  float area;     // triangle: world area
+  vec3 emission;  // triangle: radiance; point/spot: intensity (W/sr); directional: irradiance; sky: radiance
+  float cosInner;
+  float cosOuter;
+  float range;    // 0: infinite
+  uint flags;     // kLightDoubleSided
+  float power;    // selection weight (proportional to emitted power)
+};
+QL_CHECK_SIZE(GpuLight, 80);
+
+struct GpuCamera {
+  vec3 position;
+  float tanHalfFovY;
+  vec3 forward;
+  float aspect;
+  vec3 right;
+  float pad0;
+  vec3 up;
+  float pad1;
+};
+QL_CHECK_SIZE(GpuCamera, 64);
+
+// Estimator switches (FrameUniforms.flags).
+QL_CONST uint kFlagNee = 1u;            // next event estimation on
+QL_CONST uint kFlagEmitterHits = 2u;    // BSDF-sampled rays that hit emitters count
+QL_CONST uint kFlagMis = 4u;            // weight both by the power heuristic (needs both)
+QL_CONST uint kFlagRussianRoulette = 8u;
+
+struct FrameUniforms {
+  GpuCamera camera;
+  uvec2 resolution;
+  uint frameIndex;  // samples accumulated before this frame (seeds the RNG)
+  uint seed;
+  uint maxDepth;    // bounces: 0 shows emitters only, 1 adds direct light
+  uint flags;
+  uint lightCount;
+  uint samplesPerFrame;
+  vec3 sceneCenter;
+  float sceneRadius;  // for directional and sky light sampling
+};
+QL_CHECK_SIZE(FrameUniforms, 112);
+
+// Counters the path tracer accumulates per frame (read back once per frame).
+QL_CONST uint kStatRays = 0u;           // every ray traced, shadow rays included
+QL_CONST uint kStatShadowRays = 1u;
+QL_CONST uint kStatPaths = 2u;
+QL_CONST uint kStatEmitterHits = 3u;    // paths whose scattered (not shadow) ray reached an emitter
+QL_CONST uint kStatPathVertices = 4u;   // sum of path lengths (scattering vertices)
+QL_CONST uint kStatInvalidSamples = 5u; // NaN/Inf samples dropped (should stay 0)
+QL_CONST uint kStatCount = 8u;
+
+// Bindings of path_trace.comp.
+#define QL_BIND_BVH_NODES 0
+#define QL_BIND_BVH_TRIS 1
+#define QL_BIND_BVH_INSTANCES 2
+#define QL_BIND_TRIANGLES 3
+#define QL_BIND_VERTICES 4
+#define QL_BIND_INSTANCES 5
+#define QL_BIND_MATERIALS 6
+#define QL_BIND_TEXTURES 7
+#define QL_BIND_TEXELS 8
+#define QL_BIND_LIGHTS 9
+#define QL_BIND_LIGHT_CDF 10
+#define QL_BIND_FRAME 11
+#define QL_BIND_ACCUM 12
+#define QL_BIND_STATS 13
+
+struct TracePush {
+  uint sampleIndex;  // which of the frame's samples this dispatch takes
+  uint pad0, pad1, pad2;
+};
+QL_CHECK_SIZE(TracePush, 16);
+
+QL_END
+
+#endif
