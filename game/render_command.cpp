@@ -23,6 +23,7 @@ struct RenderArgs {
 };
 
 int runRender(const RenderArgs& a, const CommonOptions& common) {
+  render::checkImageExtension(a.out);
   scene::SceneAsset asset = scene::loadGltf(a.scene);
   auto ctx = createContext(common, /*windowed=*/false);
   render::RenderSettings s = a.settings;

@@ -46,6 +46,13 @@ void writeExr(const std::filesystem::path& path, const LinearImage& img) {
 
 }  // namespace
 
+void checkImageExtension(const std::filesystem::path& path) {
+  std::string ext = lowerExtension(path);
+  if (ext != ".png" && ext != ".pfm" && ext != ".exr")
+    throw std::runtime_error(path.string() + ": unknown image format '" + ext +
+                             "' (use .png, .pfm or .exr)");
+}
+
 std::vector<uint8_t> toSrgb8(const LinearImage& img, float exposure, Tonemap tonemap) {
   std::vector<uint8_t> out(size_t(img.width) * img.height * 4);
   for (size_t i = 0; i < size_t(img.width) * img.height; ++i) {
@@ -74,8 +81,7 @@ void writeImage(const std::filesystem::path& path, const LinearImage& img, float
   } else if (ext == ".exr") {
     writeExr(path, img);
   } else {
-    throw std::runtime_error(path.string() + ": unknown image format '" + ext +
-                             "' (use .png, .pfm or .exr)");
+    checkImageExtension(path);
   }
 }
 

@@ -18,6 +18,10 @@ enum class Tonemap : uint32_t { Clamp = 0, Aces = 1 };
 void writeImage(const std::filesystem::path& path, const LinearImage& image,
                 float exposure = 1.0f, Tonemap tonemap = Tonemap::Aces);
 
+// Throws std::runtime_error naming the file unless it ends in .png, .pfm or .exr
+// (checked before rendering, so a typo does not cost a render).
+void checkImageExtension(const std::filesystem::path& path);
+
 std::vector<uint8_t> toSrgb8(const LinearImage& image, float exposure, Tonemap tonemap);
 
 // Reads a PFM written by writeImage (tests, image comparison tools).

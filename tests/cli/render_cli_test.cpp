@@ -1,0 +1,132 @@
+// The `qlight render` command as a user runs it: outputs, stats, determinism,
+// and clear errors on bad input.
+#include <gtest/gtest.h>
+#include <unistd.h>
+
+#include <fstream>
+#include <nlohmann/json.hpp>
+
+#include "engine/render/image_io.h"
+#include "tests/cli/run_binary.h"
+
+namespace qlight::test {
+namespace {
+
+namespace fs = std::filesystem;
+
+std::string slurp(const fs::path& p) {
+  std::ifstream in(p, std::ios::binary);
+  return std::string(std::istreambuf_iterator<char>(in), {});
+}
+
+TEST(RenderCli, WritesImageAndStatsWithEveryField) {
+  fs::path dir = tempDir("stats");
+  auto r = runQlight("render --scene " + asset("cornell_box.gltf") + " --width 48 --height 32 --spp 4 --out " +
+                     (dir / "cb.png").string() + " --stats-json " + (dir / "s.json").string());
+  ASSERT_EQ(r.exitCode, 0) << r.output;
+  ASSERT_TRUE(fs::exists(dir / "cb.png"));
+  auto j = nlohmann::json::parse(slurp(dir / "s.json"));
+  for (const char* key : {"width", "height", "spp", "seconds", "rays", "rays_per_second", "paths",
+                          "emitter_hit_share", "mean_path_length", "gpu_ms"})
+    EXPECT_TRUE(j.contains(key)) << key;
+  EXPECT_EQ(j["width"], 48);
+  EXPECT_EQ(j["spp"], 4);
+  EXPECT_EQ(j["paths"], 48u * 32u * 4u);
+  EXPECT_GE(j["rays"].get<double>(), j["paths"].get<double>());  // at least the camera rays
+  EXPECT_GT(j["rays_per_second"].get<double>(), 0.0);
+  EXPECT_GE(j["emitter_hit_share"].get<double>(), 0.0);
+  EXPECT_LE(j["emitter_hit_share"].get<double>(), 1.0);
+  EXPECT_GT(j["mean_path_length"].get<double>(), 0.5);  // the box is closed: every path bounces
+  EXPECT_TRUE(j["gpu_ms"].contains("path_trace"));
+  EXPECT_EQ(j["invalid_samples"], 0);
+}
+
+TEST(RenderCli, SameSeedSameImageOtherSeedOtherImage) {
+  fs::path dir = tempDir("seed");
+  std::string base = "render --scene " + asset("cornell_box.gltf") + " --width 24 --height 24 --spp 2 ";
+  ASSERT_EQ(runQlight(base + "--seed 5 --out " + (dir / "a.pfm").string()).exitCode, 0);
+  ASSERT_EQ(runQlight(base + "--seed 5 --out " + (dir / "b.pfm").string()).exitCode, 0);
+  ASSERT_EQ(runQlight(base + "--seed 6 --out " + (dir / "c.pfm").string()).exitCode, 0);
+  EXPECT_EQ(slurp(dir / "a.pfm"), slurp(dir / "b.pfm"));
+  EXPECT_NE(slurp(dir / "a.pfm"), slurp(dir / "c.pfm"));
+}
+
+TEST(RenderCli, WritesExr) {
+  fs::path dir = tempDir("exr");
+  auto r = runQlight("render --scene " + asset("cornell_box.gltf") +
+                     " --width 16 --height 16 --spp 1 --out " + (dir / "x.exr").string());
+  ASSERT_EQ(r.exitCode, 0) << r.output;
+  std::string bytes = slurp(dir / "x.exr");
+  ASSERT_GE(bytes.size(), 4u);
+  EXPECT_EQ(uint8_t(bytes[0]), 0x76);  // OpenEXR magic 76 2f 31 01
+  EXPECT_EQ(uint8_t(bytes[1]), 0x2f);
+}
+
+// Depth 0 shows emitters only: a pixel is either black or the emitter's radiance.
+TEST(RenderCli, MaxDepthZeroShowsOnlyEmitters) {
+  fs::path dir = tempDir("depth0");
+  auto r = runQlight("render --scene " + asset("cornell_box.gltf") +
+                     " --width 64 --height 64 --spp 4 --max-depth 0 --out " + (dir / "d.pfm").string());
+  ASSERT_EQ(r.exitCode, 0) << r.output;
+  render::LinearImage img = render::readPfm(dir / "d.pfm");
+  // cornell_box.gltf: emissive (1, 0.70588, 0.23529) x strength 17.
+  const float emission[3] = {17.0f, 17.0f * 0.70588235f, 17.0f * 0.23529412f};
+  size_t lit = 0;
+  for (size_t i = 0; i < size_t(img.width) * img.height; ++i) {
+    float r0 = img.rgba[i * 4];
+    if (r0 == 0.0f) continue;
+    ++lit;
+    // Partly covered edge pixels average emitter and black: the ratio of channels stays.
+    EXPECT_LE(r0, emission[0] * 1.0001f);
+    EXPECT_NEAR(img.rgba[i * 4 + 1] / r0, emission[1] / emission[0], 1e-4);
+  }
+  EXPECT_GT(lit, 0u);
+  EXPECT_LT(lit, size_t(img.width) * img.height / 4);
+}
+
+TEST(RenderCli, MissingSceneIsAOneLineErrorNamingTheFile) {
+  auto r = runQlight("render --scene /nonexistent/scene.gltf --out /tmp/x.png");
+  EXPECT_NE(r.exitCode, 0);
+  EXPECT_NE(r.output.find("qlight: error:"), std::string::npos) << r.output;
+  EXPECT_NE(r.output.find("/nonexistent/scene.gltf"), std::string::npos) << r.output;
+}
+
+TEST(RenderCli, MalformedSceneIsAnError) {
+  fs::path dir = tempDir("malformed");
+  std::ofstream(dir / "bad.gltf") << "{ \"asset\": { \"version\": \"2.0\" }, \"nodes\": [ oops";
+  auto r = runQlight("render --scene " + (dir / "bad.gltf").string() + " --out " +
+                     (dir / "x.png").string());
+  EXPECT_NE(r.exitCode, 0);
+  EXPECT_NE(r.output.find("bad.gltf"), std::string::npos) << r.output;
+  EXPECT_FALSE(fs::exists(dir / "x.png"));
+}
+
+TEST(RenderCli, UnknownImageFormatIsAnError) {
+  auto r = runQlight("render --scene " + asset("cornell_box.gltf") +
+                     " --width 8 --height 8 --spp 1 --out /tmp/qlight_x.bmp");
+  EXPECT_NE(r.exitCode, 0);
+  EXPECT_NE(r.output.find("qlight_x.bmp"), std::string::npos) << r.output;
+}
+
+TEST(RenderCli, AbsurdSettingsAreRejected) {
+  std::string base = "render --scene " + asset("cornell_box.gltf") + " --out /tmp/qlight_y.png ";
+  for (const char* bad : {"--width 0", "--height -3", "--spp 0", "--max-depth 100000",
+                          "--exposure nan", "--exposure -1", "--estimator magic", "--rr maybe",
+                          "--time -1"}) {
+    auto r = runQlight(base + bad);
+    EXPECT_NE(r.exitCode, 0) << bad << "\n" << r.output;
+  }
+}
+
+TEST(DemoCli, HeadlessDemoWritesFramesAndStats) {
+  fs::path dir = tempDir("demo");
+  auto r = runQlight("demo --headless --frames 3 --width 32 --height 24 --out " + dir.string());
+  ASSERT_EQ(r.exitCode, 0) << r.output;
+  EXPECT_TRUE(fs::exists(dir / "final.png"));
+  auto j = nlohmann::json::parse(slurp(dir / "stats.json"));
+  EXPECT_EQ(j["frames"], 3);
+  EXPECT_EQ(j["frames_detail"].size(), 3u);
+}
+
+}  // namespace
+}  // namespace qlight::test
