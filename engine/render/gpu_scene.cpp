@@ -30,6 +30,7 @@ GpuMaterial toGpu(const scene::MaterialAsset& m) {
   g.metallicRoughnessTexture = m.metallicRoughnessTexture;
   g.emissiveTexture = m.emissiveTexture;
   g.flags = m.doubleSided ? shared::kMaterialDoubleSided : 0u;
+  g.specular = m.specularFactor;
   return g;
 }
 

@@ -86,6 +86,7 @@ BsdfParams surfaceBsdf(Surface s) {
   vec4 mr = sampleTexture(m.metallicRoughnessTexture, s.uv);
   p.metallic = clamp(m.metallic * mr.b, 0.0, 1.0);
   p.roughness = clamp(m.roughness * mr.g, 0.0, 1.0);
+  p.specular = clamp(m.specular, 0.0, 1.0);
   return p;
 }
 

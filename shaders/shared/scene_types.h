@@ -43,7 +43,8 @@ struct GpuMaterial {
   int metallicRoughnessTexture;
   int emissiveTexture;
   uint flags;
-  uint pad0, pad1, pad2;
+  float specular;  // KHR_materials_specular specularFactor (1 = plain glTF)
+  uint pad1, pad2;
 };
 QL_CHECK_SIZE(GpuMaterial, 64);
 

@@ -1,0 +1,211 @@
+// glTF metallic-roughness BSDF in the local shading frame (z = shading
+// normal), shared by GLSL and C++. The caller flips the normal to the side of
+// wo, so wo.z > 0; any wi with wi.z <= 0 has f = 0 and pdf = 0.
+//
+//   f = diffuse + specular
+//   specular = F(wo.h) * D(h) * G2(wo, wi) / (4 wo.z wi.z)
+//     D: GGX (Trowbridge-Reitz), alpha = max(roughness^2, kMinGgxAlpha)
+//     G2: Smith height-correlated; F: Schlick, F0 = mix(0.04, baseColor, metallic)
+//   diffuse = (1 - metallic) * baseColor / pi * (1 - Fd(wo.z)) * (1 - Fd(wi.z))
+//     Fd: Schlick with the dielectric F0 = 0.04.
+//
+// Why the diffuse lobe carries (1 - Fd(wo.z)) (1 - Fd(wi.z)): it keeps f
+// reciprocal and the directional albedo at most 1 for a white base colour (a
+// plain baseColor/pi lobe plus the specular lobe reflects more than it
+// receives at grazing angles). Its albedo has a closed form, see
+// bsdfDiffuseAlbedo. Consequence: no glTF material is a pure Lambertian, so a
+// white furnace of this BSDF does not come out at E/(1 - baseColor).
+//
+// The alpha floor (1e-3, i.e. roughness ~0.03) keeps D and its sampling finite
+// in float; D is written with x^2 + y^2 instead of 1 - z^2 to avoid
+// cancellation near the peak.
+#ifndef QLIGHT_SHARED_BSDF_H
+#define QLIGHT_SHARED_BSDF_H
+
+#include "common.h"
+#include "sampling.h"
+
+QL_BEGIN
+
+QL_CONST float kMinGgxAlpha = 1e-3f;
+QL_CONST float kDielectricF0 = 0.04f;
+
+// specular: KHR_materials_specular's specularFactor, the weight of the
+// dielectric specular layer (1 = plain glTF). At 0 with metallic 0 the
+// material is exactly Lambertian (baseColor / pi): the furnace test and the
+// exact Q-learning transport of Lambertian vertices rely on that.
+struct BsdfParams {
+  vec3 baseColor;
+  float metallic;
+  float roughness;
+  float specular;
+};
+
+QL_FN float ggxAlpha(float roughness) { return max(roughness * roughness, kMinGgxAlpha); }
+
+QL_FN float schlickWeight(float cosTheta) {
+  float m = clamp(1.0f - cosTheta, 0.0f, 1.0f);
+  float m2 = m * m;
+  return m2 * m2 * m;
+}
+
+QL_FN vec3 fresnelSchlick(vec3 f0, float cosTheta) {
+  return f0 + (vec3(1.0f) - f0) * schlickWeight(cosTheta);
+}
+
+QL_FN float fresnelSchlickScalar(float f0, float cosTheta) {
+  return f0 + (1.0f - f0) * schlickWeight(cosTheta);
+}
+
+// Fresnel of the whole specular layer: the dielectric part weighted by
+// `specular`, the metal part by metallic.
+QL_FN vec3 specularFresnel(BsdfParams p, float cosTheta) {
+  vec3 dielectric = vec3(p.specular * fresnelSchlickScalar(kDielectricF0, cosTheta));
+  return mix(dielectric, fresnelSchlick(p.baseColor, cosTheta), p.metallic);
+}
+
+// What the dielectric specular layer reflects away from the diffuse base.
+QL_FN float diffuseTransmission(BsdfParams p, float cosTheta) {
+  return 1.0f - p.specular * fresnelSchlickScalar(kDielectricF0, cosTheta);
+}
+
+// GGX normal distribution of a unit micro-normal m (m.z > 0).
+QL_FN float ggxD(vec3 m, float alpha) {
+  if (m.z <= 0.0f) return 0.0f;
+  float tan2Scaled = (m.x * m.x + m.y * m.y) / (alpha * alpha);
+  float denom = tan2Scaled + m.z * m.z;
+  return 1.0f / (kPi * alpha * alpha * denom * denom);
+}
+
+// sqrt(z^2 + alpha^2 (x^2 + y^2)) = z * (1 + 2 Lambda(w)) for unit w, z > 0.
+QL_FN float ggxLambdaTerm(vec3 w, float alpha) {
+  return sqrt(w.z * w.z + alpha * alpha * (w.x * w.x + w.y * w.y));
+}
+
+// Smith masking of one direction: G1 = 1 / (1 + Lambda).
+QL_FN float ggxG1(vec3 w, float alpha) {
+  if (w.z <= 0.0f) return 0.0f;
+  return 2.0f * w.z / (w.z + ggxLambdaTerm(w, alpha));
+}
+
+// Height-correlated G2 / (4 wo.z wi.z), the "visibility" term.
+QL_FN float ggxVisibility(vec3 wo, vec3 wi, float alpha) {
+  if (wo.z <= 0.0f || wi.z <= 0.0f) return 0.0f;
+  return 0.5f / (ggxLambdaTerm(wo, alpha) * wi.z + ggxLambdaTerm(wi, alpha) * wo.z);
+}
+
+// Heitz 2018, "Sampling the GGX Distribution of Visible Normals": a
+// micro-normal m with density D_wo(m) = G1(wo) max(0, wo.m) D(m) / wo.z.
+QL_FN vec3 sampleGgxVisibleNormal(vec3 wo, float alpha, vec2 u) {
+  vec3 vh = normalize(vec3(alpha * wo.x, alpha * wo.y, wo.z));
+  float lenSq = vh.x * vh.x + vh.y * vh.y;
+  vec3 t1 = lenSq > 0.0f ? vec3(-vh.y, vh.x, 0.0f) * inversesqrt(lenSq) : vec3(1.0f, 0.0f, 0.0f);
+  vec3 t2 = cross(vh, t1);
+  float r = sqrt(u.x);
+  float phi = kTwoPi * u.y;
+  float p1 = r * cos(phi);
+  float p2 = r * sin(phi);
+  float s = 0.5f * (1.0f + vh.z);
+  p2 = (1.0f - s) * sqrt(max(0.0f, 1.0f - p1 * p1)) + s * p2;
+  vec3 nh = p1 * t1 + p2 * t2 + sqrt(max(0.0f, 1.0f - p1 * p1 - p2 * p2)) * vh;
+  return normalize(vec3(alpha * nh.x, alpha * nh.y, max(0.0f, nh.z)));
+}
+
+QL_FN vec3 reflectAbout(vec3 wo, vec3 m) { return 2.0f * dot(wo, m) * m - wo; }
+
+// Solid-angle density of wi = reflect(wo, m) with m from
+// sampleGgxVisibleNormal: D_wo(m) / (4 wo.m) = D(m) / (2 (wo.z + term(wo))).
+// Defined for every wi, also below the horizon, where such samples land
+// before the caller rejects them; it integrates to 1 over the sphere.
+QL_FN float ggxVndfReflectionPdf(vec3 wo, vec3 wi, float alpha) {
+  vec3 h = wo + wi;
+  float len2 = dot(h, h);
+  if (wo.z <= 0.0f || !(len2 > 0.0f)) return 0.0f;
+  vec3 m = h * inversesqrt(len2);
+  return ggxD(m, alpha) / (2.0f * (wo.z + ggxLambdaTerm(wo, alpha)));
+}
+
+QL_FN vec3 lambertBrdf(vec3 albedo) { return albedo * kInvPi; }
+
+QL_FN vec3 bsdfEvalDiffuse(BsdfParams p, vec3 wo, vec3 wi) {
+  if (wo.z <= 0.0f || wi.z <= 0.0f) return vec3(0.0f);
+  float transmitted = diffuseTransmission(p, wo.z) * diffuseTransmission(p, wi.z);
+  return lambertBrdf(p.baseColor) * ((1.0f - p.metallic) * transmitted);
+}
+
+QL_FN vec3 bsdfEvalSpecular(BsdfParams p, vec3 wo, vec3 wi) {
+  if (wo.z <= 0.0f || wi.z <= 0.0f) return vec3(0.0f);
+  float alpha = ggxAlpha(p.roughness);
+  vec3 m = normalize(wo + wi);
+  // wo.m and wi.m are equal in exact arithmetic; averaging keeps f(wo, wi)
+  // bit-for-bit symmetric.
+  float cosOm = 0.5f * (dot(wo, m) + dot(wi, m));
+  return specularFresnel(p, cosOm) * (ggxD(m, alpha) * ggxVisibility(wo, wi, alpha));
+}
+
+// f(wo, wi) without the cosine.
+QL_FN vec3 bsdfEval(BsdfParams p, vec3 wo, vec3 wi) {
+  return bsdfEvalDiffuse(p, wo, wi) + bsdfEvalSpecular(p, wo, wi);
+}
+
+// Exact directional albedo of the diffuse lobe: the cosine-weighted mean of
+// 1 - s Fd over the hemisphere is 1 - s (F0 + (1 - F0)/21)
+// (2 * int mu (1-mu)^5 = 1/21); for s = 1 that is (1 - F0) * 20/21.
+QL_FN vec3 bsdfDiffuseAlbedo(BsdfParams p, float cosThetaO) {
+  float inner = 1.0f - p.specular * (kDielectricF0 + (1.0f - kDielectricF0) * (1.0f / 21.0f));
+  return p.baseColor * ((1.0f - p.metallic) * diffuseTransmission(p, cosThetaO) * inner);
+}
+
+// Probability of sampling the specular lobe: the lobes' approximate albedos
+// (specular: Fresnel at wo, ignoring shadowing; diffuse: exact).
+QL_FN float bsdfSpecularProbability(BsdfParams p, vec3 wo) {
+  float spec = luminance(specularFresnel(p, wo.z));
+  float diff = luminance(bsdfDiffuseAlbedo(p, wo.z));
+  float total = spec + diff;
+  return total > 0.0f ? spec / total : 0.0f;
+}
+
+// Solid-angle pdf of bsdfSample producing wi (0 below the horizon).
+QL_FN float bsdfPdf(BsdfParams p, vec3 wo, vec3 wi) {
+  if (wo.z <= 0.0f || wi.z <= 0.0f) return 0.0f;
+  float pSpec = bsdfSpecularProbability(p, wo);
+  float alpha = ggxAlpha(p.roughness);
+  return pSpec * ggxVndfReflectionPdf(wo, wi, alpha) + (1.0f - pSpec) * cosineHemispherePdf(wi.z);
+}
+
+// One-sample mixture of the lobes: u.z picks the lobe, u.xy the direction.
+// Returns false (wi below the horizon, pdf = 0) when the specular lobe
+// reflects under the surface; that probability is part of the density, so
+// the caller just ends or skips the path. pdf is the mixture density.
+QL_FN bool bsdfSample(BsdfParams p, vec3 wo, vec3 u, QL_OUT(vec3) wi, QL_OUT(float) pdf) {
+  float pSpec = bsdfSpecularProbability(p, wo);
+  float alpha = ggxAlpha(p.roughness);
+  float specPdf;
+  if (u.z < pSpec) {
+    vec3 m = sampleGgxVisibleNormal(wo, alpha, vec2(u.x, u.y));
+    wi = reflectAbout(wo, m);
+    specPdf = ggxD(m, alpha) / (2.0f * (wo.z + ggxLambdaTerm(wo, alpha)));
+  } else {
+    wi = sampleCosineHemisphere(vec2(u.x, u.y));
+    specPdf = ggxVndfReflectionPdf(wo, wi, alpha);
+  }
+  if (wo.z <= 0.0f || wi.z <= 0.0f) {
+    pdf = 0.0f;
+    return false;
+  }
+  pdf = pSpec * specPdf + (1.0f - pSpec) * cosineHemispherePdf(wi.z);
+  return pdf > 0.0f;
+}
+
+// bsdfSample plus the path throughput factor f * cos / pdf.
+QL_FN bool bsdfSampleWeighted(BsdfParams p, vec3 wo, vec3 u, QL_OUT(vec3) wi, QL_OUT(float) pdf,
+                              QL_OUT(vec3) weight) {
+  weight = vec3(0.0f);
+  if (!bsdfSample(p, wo, u, wi, pdf)) return false;
+  weight = bsdfEval(p, wo, wi) * (wi.z / pdf);
+  return true;
+}
+
+QL_END
+
+#endif

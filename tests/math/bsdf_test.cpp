@@ -1,0 +1,382 @@
+// The glTF metallic-roughness BSDF: GGX normalisation, VNDF sampling, the
+// mixed sampler's pdf (integrates to 1, samples follow it), reciprocity,
+// albedos (closed forms, energy <= 1) and the sample weight.
+#include "shaders/shared/bsdf.h"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <string>
+#include <vector>
+
+#include "sphere_quadrature.h"
+#include "stats_support.h"
+
+namespace qlight::shared {
+namespace {
+
+using qlight::test::chiSquareTest;
+using qlight::test::integrateWithError;
+using qlight::test::kPiD;
+using qlight::test::SphereGrid;
+using qlight::test::TestRandom;
+
+// Quadrature points per axis (the error estimate also uses twice as many).
+constexpr int kQuadN = 512;
+// Absolute floor on quadrature tolerances: float evaluation of the integrand.
+constexpr double kFloatFloor = 2e-5;
+
+vec3 outgoing(double thetaDeg) {
+  double t = thetaDeg * kPiD / 180.0;
+  return vec3(float(std::sin(t)), 0.0f, float(std::cos(t)));
+}
+
+BsdfParams params(float roughness, float metallic, vec3 base = vec3(0.8f, 0.6f, 0.3f),
+                  float specular = 1.0f) {
+  BsdfParams p;
+  p.baseColor = base;
+  p.metallic = metallic;
+  p.roughness = roughness;
+  p.specular = specular;
+  return p;
+}
+
+// wi-space grid crowded around the mirror direction of wo (phi = pi).
+SphereGrid mirrorGrid(vec3 wo, float alpha, double thetaLo, double thetaHi) {
+  double thetaO = std::acos(std::clamp(double(wo.z), -1.0, 1.0));
+  return SphereGrid::around(thetaLo, thetaHi, thetaO, kPiD, alpha);
+}
+
+std::string label(float roughness, float metallic, double thetaDeg) {
+  return "roughness " + std::to_string(roughness) + ", metallic " + std::to_string(metallic) +
+         ", theta_o " + std::to_string(thetaDeg);
+}
+
+const float kAlphas[] = {kMinGgxAlpha, 0.0025f, 0.01f, 0.1f, 0.5f, 1.0f};
+const float kRoughnesses[] = {0.05f, 0.1f, 0.3f, 0.6f, 1.0f};
+const float kMetallics[] = {0.0f, 0.5f, 1.0f};
+const double kThetaOs[] = {0.0, 30.0, 60.0, 80.0, 88.0};
+
+// Tolerance: float floor plus three Richardson error estimates; the estimate
+// itself must be small, or the tolerance would say nothing.
+#define EXPECT_QUADRATURE_NEAR(result, expected, what)                                           \
+  do {                                                                                           \
+    EXPECT_LT((result).errorEstimate, 1e-3) << what;                                             \
+    EXPECT_NEAR((result).value, (expected), kFloatFloor + 3.0 * (result).errorEstimate) << what; \
+  } while (0)
+
+TEST(Ggx, ProjectedMicrofacetAreaIsOne) {
+  for (float alpha : kAlphas) {
+    SphereGrid grid = SphereGrid::around(0, kPiD / 2, 0, kPiD, alpha);
+    auto r = integrateWithError(
+        grid, [&](vec3 m) { return ggxD(m, alpha) * m.z; }, kQuadN);
+    EXPECT_QUADRATURE_NEAR(r, 1.0, "alpha " << alpha);
+  }
+}
+
+// int D_wo(m) dm = 1 with D_wo = G1(wo) max(0, wo.m) D(m) / wo.z: checks G1.
+TEST(Ggx, VisibleNormalDistributionIsNormalised) {
+  for (float alpha : kAlphas)
+    for (double thetaDeg : {0.0, 45.0, 80.0, 89.0}) {
+      vec3 wo = outgoing(thetaDeg);
+      SphereGrid grid = SphereGrid::around(0, kPiD / 2, 0, kPiD, alpha);
+      auto r = integrateWithError(
+          grid,
+          [&](vec3 m) {
+            return ggxG1(wo, alpha) * std::max(0.0f, dot(wo, m)) * ggxD(m, alpha) / wo.z;
+          },
+          kQuadN);
+      EXPECT_QUADRATURE_NEAR(r, 1.0, "alpha " << alpha << " theta_o " << thetaDeg);
+    }
+}
+
+double thetaOf(vec3 w) { return std::atan2(std::hypot(double(w.x), double(w.y)), double(w.z)); }
+
+// The reflection pdf jumps to 0 where the half vector leaves the upper
+// hemisphere, i.e. at wi.z = -wo.z: the theta integration is split there.
+TEST(GgxVndf, ReflectionPdfIntegratesToOneOverTheSphere) {
+  for (float alpha : kAlphas)
+    for (double thetaDeg : kThetaOs) {
+      vec3 wo = outgoing(thetaDeg);
+      double thetaO = thetaOf(wo);
+      auto r = qlight::test::integrateOverThetaPieces(
+          {0.0, kPiD - thetaO, kPiD}, thetaO, kPiD, alpha,
+          [&](vec3 wi) { return ggxVndfReflectionPdf(wo, wi, alpha); }, kQuadN);
+      EXPECT_QUADRATURE_NEAR(r, 1.0, "alpha " << alpha << " theta_o " << thetaDeg);
+    }
+}
+
+// Visible normals binned on a grid crowded around the normal, against
+// D_wo(m) integrated over each bin (D_wo is continuous, so the bin integrals
+// are accurate; the reflection step is covered by the pdf integral above and
+// the mixed-BSDF chi-square below).
+TEST(GgxVndf, VisibleNormalSamplesFollowDensity) {
+  constexpr int kBins = 32, kSub = 8, kSamples = 200000;
+  TestRandom rnd(70);
+  for (float alpha : {0.0025f, 0.1f, 0.5f, 1.0f})
+    for (double thetaDeg : {0.0, 60.0, 88.0}) {
+      vec3 wo = outgoing(thetaDeg);
+      SphereGrid grid = SphereGrid::around(0, kPiD / 2, 0, kPiD, alpha);
+      std::vector<double> observed(kBins * kBins, 0.0);
+      for (int i = 0; i < kSamples; ++i) {
+        vec3 m = sampleGgxVisibleNormal(wo, alpha, rnd.next2());
+        ASSERT_GE(m.z, 0.0f);
+        ASSERT_NEAR(length(m), 1.0f, 1e-5f);
+        observed[grid.bin(m, kBins)] += 1.0;
+      }
+      auto expected = grid.binIntegrals(
+          [&](vec3 m) {
+            return ggxG1(wo, alpha) * std::max(0.0f, dot(wo, m)) * ggxD(m, alpha) / wo.z;
+          },
+          kBins, kSub);
+      for (double& e : expected) e *= kSamples;
+      auto result = chiSquareTest(observed, expected);
+      EXPECT_TRUE(result.pass()) << "alpha " << alpha << " theta_o " << thetaDeg << ": "
+                                 << result.describe();
+    }
+}
+
+// bsdfSample fails (wi under the surface) with probability
+// pSpec * int_{lower hemisphere} vndfPdf, so the sub-density bsdfPdf on the
+// upper hemisphere plus that mass is 1.
+double failureProbability(const BsdfParams& p, vec3 wo, double* errorEstimate, int n = kQuadN) {
+  float alpha = ggxAlpha(p.roughness);
+  auto r = qlight::test::integrateOverThetaPieces(
+      {kPiD / 2, kPiD - thetaOf(wo), kPiD}, kPiD / 2, kPiD, alpha,
+      [&](vec3 wi) { return ggxVndfReflectionPdf(wo, wi, alpha); }, n);
+  *errorEstimate = r.errorEstimate;
+  return bsdfSpecularProbability(p, wo) * r.value;
+}
+
+TEST(Bsdf, PdfPlusFailureMassIsOne) {
+  for (float roughness : kRoughnesses)
+    for (float metallic : kMetallics)
+      for (double thetaDeg : kThetaOs) {
+        BsdfParams p = params(roughness, metallic);
+        vec3 wo = outgoing(thetaDeg);
+        SphereGrid upper = mirrorGrid(wo, ggxAlpha(roughness), 0, kPiD / 2);
+        auto r = integrateWithError(
+            upper, [&](vec3 wi) { return bsdfPdf(p, wo, wi); }, kQuadN);
+        double failError;
+        double fail = failureProbability(p, wo, &failError);
+        r.value += fail;
+        r.errorEstimate += failError;
+        EXPECT_QUADRATURE_NEAR(r, 1.0, label(roughness, metallic, thetaDeg));
+      }
+}
+
+// Samples binned on the stretched upper-hemisphere grid plus one bin for
+// failed samples; expected counts from the pdf integrated over each bin.
+TEST(Bsdf, SamplesFollowPdf) {
+  constexpr int kBins = 32, kSub = 8, kSamples = 100000;
+  TestRandom rnd(71);
+  for (float roughness : kRoughnesses)
+    for (float metallic : kMetallics)
+      for (double thetaDeg : kThetaOs) {
+        BsdfParams p = params(roughness, metallic);
+        vec3 wo = outgoing(thetaDeg);
+        SphereGrid upper = mirrorGrid(wo, ggxAlpha(roughness), 0, kPiD / 2);
+        std::vector<double> observed(kBins * kBins + 1, 0.0);
+        for (int i = 0; i < kSamples; ++i) {
+          vec3 wi;
+          float pdf;
+          if (bsdfSample(p, wo, rnd.next3(), wi, pdf)) {
+            int b = upper.bin(wi, kBins);
+            ASSERT_GE(b, 0);
+            observed[b] += 1.0;
+          } else {
+            observed[kBins * kBins] += 1.0;
+          }
+        }
+        auto expected =
+            upper.binIntegrals([&](vec3 wi) { return bsdfPdf(p, wo, wi); }, kBins, kSub);
+        double failError;
+        // A coarse grid suffices: the failure count's own noise is far larger.
+        expected.push_back(failureProbability(p, wo, &failError, 96));
+        for (double& e : expected) e *= kSamples;
+        auto result = chiSquareTest(observed, expected);
+        EXPECT_TRUE(result.pass())
+            << label(roughness, metallic, thetaDeg) << ": " << result.describe();
+      }
+}
+
+TEST(Bsdf, SampleReportsPdfAndWeightOfItsDirection) {
+  TestRandom rnd(72);
+  for (float roughness : {0.0f, 0.05f, 0.3f, 1.0f})
+    for (float metallic : kMetallics)
+      for (double thetaDeg : {0.0, 45.0, 89.9}) {
+        BsdfParams p = params(roughness, metallic);
+        vec3 wo = outgoing(thetaDeg);
+        for (int i = 0; i < 2000; ++i) {
+          vec3 wi, weight;
+          float pdf;
+          vec3 u = rnd.next3();
+          bool ok = bsdfSampleWeighted(p, wo, u, wi, pdf, weight);
+          if (!ok) {
+            ASSERT_EQ(pdf, 0.0f);
+            ASSERT_LE(wi.z, 0.0f);
+            ASSERT_EQ(bsdfPdf(p, wo, wi), 0.0f);
+            continue;
+          }
+          ASSERT_GT(wi.z, 0.0f);
+          ASSERT_NEAR(length(wi), 1.0f, 1e-4f);
+          // The sampler evaluates D at its own micro-normal, bsdfPdf at
+          // normalize(wo + wi): they differ by float rounding of the half vector,
+          // amplified near grazing mirror reflection (relative D error <= 2 dm / alpha).
+          float alpha = ggxAlpha(roughness);
+          float dm = 2.4e-7f / length(wo + wi);
+          float tol = 1e-4f + 2.0f * dm / alpha;
+          float evalPdf = bsdfPdf(p, wo, wi);
+          ASSERT_NEAR(pdf, evalPdf, tol * evalPdf) << label(roughness, metallic, thetaDeg);
+          vec3 expectedWeight = bsdfEval(p, wo, wi) * wi.z / evalPdf;
+          for (int c = 0; c < 3; ++c) {
+            ASSERT_TRUE(std::isfinite(weight[c]));
+            ASSERT_NEAR(weight[c], expectedWeight[c], tol * expectedWeight[c] + 1e-7f);
+          }
+        }
+      }
+}
+
+TEST(Bsdf, IsReciprocal) {
+  TestRandom rnd(73);
+  for (float roughness : {0.0f, 0.05f, 0.3f, 1.0f})
+    for (float metallic : kMetallics) {
+      BsdfParams p = params(roughness, metallic);
+      for (int i = 0; i < 5000; ++i) {
+        vec3 a = sampleUniformHemisphere(rnd.next2());
+        vec3 b = sampleUniformHemisphere(rnd.next2());
+        vec3 fab = bsdfEval(p, a, b), fba = bsdfEval(p, b, a);
+        for (int c = 0; c < 3; ++c) ASSERT_NEAR(fab[c], fba[c], 1e-6f * fab[c]);
+      }
+    }
+}
+
+TEST(Bsdf, IsZeroBelowTheHorizon) {
+  BsdfParams p = params(0.4f, 0.3f);
+  vec3 wo = outgoing(30.0);
+  for (vec3 wi : {vec3(0.6f, 0.0f, -0.8f), vec3(1.0f, 0.0f, 0.0f), vec3(0, 0, -1)}) {
+    EXPECT_EQ(bsdfEval(p, wo, wi), vec3(0.0f));
+    EXPECT_EQ(bsdfPdf(p, wo, wi), 0.0f);
+  }
+}
+
+TEST(Lambert, AlbedoIntegratesToBaseColor) {
+  vec3 base(0.9f, 0.5f, 0.1f);
+  SphereGrid grid = SphereGrid::uniform(0, kPiD / 2);
+  for (int c = 0; c < 3; ++c) {
+    auto r = integrateWithError(
+        grid, [&](vec3 wi) { return lambertBrdf(base)[c] * wi.z; }, 256);
+    EXPECT_QUADRATURE_NEAR(r, base[c], "channel " << c);
+  }
+}
+
+TEST(Bsdf, DiffuseLobeAlbedoMatchesClosedForm) {
+  SphereGrid grid = SphereGrid::uniform(0, kPiD / 2);
+  for (float metallic : {0.0f, 0.5f})
+    for (double thetaDeg : kThetaOs) {
+      BsdfParams p = params(0.5f, metallic);
+      vec3 wo = outgoing(thetaDeg);
+      vec3 closedForm = bsdfDiffuseAlbedo(p, wo.z);
+      for (int c = 0; c < 3; ++c) {
+        auto r = integrateWithError(
+            grid, [&](vec3 wi) { return bsdfEvalDiffuse(p, wo, wi)[c] * wi.z; }, 256);
+        EXPECT_QUADRATURE_NEAR(r, closedForm[c], label(0.5f, metallic, thetaDeg));
+      }
+    }
+}
+
+// For a white metal (F = 1), int f cos dwi over wi equals the visible-normal
+// expectation of G2 / G1(wo) computed over micro-normals: checks the
+// Jacobian 1/(4 wo.m) and the visibility term against each other.
+TEST(Bsdf, SpecularAlbedoMatchesVisibleNormalExpectation) {
+  for (float roughness : {0.05f, 0.3f, 0.6f, 1.0f})
+    for (double thetaDeg : {0.0, 60.0, 85.0}) {
+      BsdfParams p = params(roughness, 1.0f, vec3(1.0f));
+      float alpha = ggxAlpha(roughness);
+      vec3 wo = outgoing(thetaDeg);
+      auto inWi = integrateWithError(
+          mirrorGrid(wo, alpha, 0, kPiD / 2),
+          [&](vec3 wi) { return bsdfEvalSpecular(p, wo, wi).x * wi.z; }, kQuadN);
+      auto inM = integrateWithError(
+          SphereGrid::around(0, kPiD / 2, 0, kPiD, alpha),
+          [&](vec3 m) {
+            vec3 wi = reflectAbout(wo, normalize(m));
+            if (wi.z <= 0.0f) return 0.0f;
+            float dWo = ggxG1(wo, alpha) * std::max(0.0f, dot(wo, m)) * ggxD(m, alpha) / wo.z;
+            float g2 = ggxVisibility(wo, wi, alpha) * 4.0f * wo.z * wi.z;
+            return dWo * g2 / ggxG1(wo, alpha);
+          },
+          kQuadN);
+      std::string what = label(roughness, 1.0f, thetaDeg);
+      EXPECT_LT(inWi.errorEstimate + inM.errorEstimate, 1e-3) << what;
+      EXPECT_NEAR(inWi.value, inM.value,
+                  kFloatFloor + 3.0 * (inWi.errorEstimate + inM.errorEstimate))
+          << what;
+      EXPECT_LE(inWi.value, 1.0 + kFloatFloor) << what;
+      if (roughness <= 0.05f && thetaDeg <= 60.0) {
+        EXPECT_GT(inWi.value, 0.99) << what;
+      }
+    }
+}
+
+// Energy sanity: a white surface never reflects more than it receives.
+TEST(Bsdf, WhiteAlbedoIsAtMostOne) {
+  for (float roughness : kRoughnesses)
+    for (float metallic : kMetallics)
+      for (double thetaDeg : kThetaOs) {
+        BsdfParams p = params(roughness, metallic, vec3(1.0f));
+        vec3 wo = outgoing(thetaDeg);
+        auto r = integrateWithError(
+            mirrorGrid(wo, ggxAlpha(roughness), 0, kPiD / 2),
+            [&](vec3 wi) { return bsdfEval(p, wo, wi).x * wi.z; }, kQuadN);
+        std::string what = label(roughness, metallic, thetaDeg);
+        EXPECT_LT(r.errorEstimate, 1e-3) << what;
+        EXPECT_LE(r.value, 1.0 + kFloatFloor + 3.0 * r.errorEstimate) << what;
+      }
+}
+
+TEST(Bsdf, AlphaIsRoughnessSquaredWithAFloor) {
+  EXPECT_FLOAT_EQ(ggxAlpha(0.5f), 0.25f);
+  EXPECT_FLOAT_EQ(ggxAlpha(1.0f), 1.0f);
+  EXPECT_EQ(ggxAlpha(0.0f), kMinGgxAlpha);
+}
+
+TEST(Bsdf, LobeProbabilityFollowsAlbedos) {
+  vec3 wo = outgoing(0.0);
+  EXPECT_FLOAT_EQ(bsdfSpecularProbability(params(0.5f, 1.0f), wo), 1.0f);  // metal: no diffuse
+  float pDielectric = bsdfSpecularProbability(params(0.5f, 0.0f, vec3(1.0f)), wo);
+  EXPECT_NEAR(pDielectric, 0.04 / (0.04 + 0.96 * 0.96 * 20.0 / 21.0), 1e-5);
+  // Grazing: Fresnel takes over.
+  EXPECT_GT(bsdfSpecularProbability(params(0.5f, 0.0f), outgoing(89.0)), 0.9f);
+}
+
+}  // namespace
+}  // namespace qlight::shared
+
+namespace qlight::shared {
+namespace {
+
+// KHR_materials_specular's specularFactor = 0 on a dielectric leaves exactly
+// baseColor / pi, sampled by the cosine lobe alone.
+TEST(Bsdf, SpecularZeroIsExactlyLambertian) {
+  BsdfParams p;
+  p.baseColor = vec3(0.5f, 0.7f, 0.9f);
+  p.metallic = 0.0f;
+  p.roughness = 0.3f;
+  p.specular = 0.0f;
+  for (float a : {0.1f, 0.7f, 1.4f}) {
+    vec3 wo = normalize(vec3(std::sin(a), 0.0f, std::cos(a)));
+    EXPECT_EQ(bsdfSpecularProbability(p, wo), 0.0f);
+    for (float b : {0.05f, 0.8f, 1.5f}) {
+      vec3 wi = normalize(vec3(0.3f * std::sin(b), std::sin(b), std::cos(b)));
+      vec3 f = bsdfEval(p, wo, wi);
+      for (int c = 0; c < 3; ++c) EXPECT_FLOAT_EQ(f[c], p.baseColor[c] * kInvPi);
+      EXPECT_FLOAT_EQ(bsdfPdf(p, wo, wi), wi.z * kInvPi);
+    }
+    vec3 albedo = bsdfDiffuseAlbedo(p, wo.z);
+    for (int c = 0; c < 3; ++c) EXPECT_FLOAT_EQ(albedo[c], p.baseColor[c]);
+  }
+}
+
+}  // namespace
+}  // namespace qlight::shared
