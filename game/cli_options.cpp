@@ -26,4 +26,35 @@ void addRenderOptions(CLI::App& app, render::RenderSettings& s) {
       ->transform(CLI::CheckedTransformer(tonemaps, CLI::ignore_case));
 }
 
+void addGuidingOptions(CLI::App& app, guiding::GuidingSettings& g, GuidingCli& cli) {
+  std::map<std::string, bool> guidingModes{{"q", true}, {"off", false}};
+  app.add_option("--guiding", g.enabled, "q (Q-learned importance sampling) or off")
+      ->transform(CLI::CheckedTransformer(guidingModes, CLI::ignore_case));
+  app.add_option("--strata", cli.strata, "hemisphere strata RxC, e.g. 8x8 or 16x8");
+  app.add_option("--alpha-min", g.alphaMin, "learning rate floor (keeps tracking moving lights)");
+  app.add_option("--alpha-max", g.alphaMax, "learning rate ceiling");
+  app.add_option("--points", g.pointBudget, "cache point budget");
+  app.add_option("--select-probability", g.selectProbability,
+                 "share of guided samples at diffuse vertices, 0..0.95 (BSDF sampling the rest)");
+  std::map<std::string, guiding::PointSet> sets{{"photon", guiding::PointSet::PhotonMap},
+                                                {"poisson", guiding::PointSet::PoissonAo}};
+  app.add_option("--point-set", g.pointSet,
+                 "photon (fixed rejection distance) or poisson (distance from ambient occlusion)")
+      ->transform(CLI::CheckedTransformer(sets, CLI::ignore_case));
+  std::map<std::string, bool> onOff{{"on", true}, {"off", false}};
+  app.add_option("--light-learning", g.lightLearning, "learned light selection for NEE: on|off")
+      ->transform(CLI::CheckedTransformer(onOff, CLI::ignore_case));
+  app.add_option("--nee", cli.nee, "next event estimation: on (MIS with scattering) or off")
+      ->check(CLI::IsMember({"on", "off"}, CLI::ignore_case));
+}
+
+void finishGuidingOptions(const GuidingCli& cli, guiding::GuidingSettings& g,
+                          render::RenderSettings& r) {
+  if (!cli.strata.empty()) guiding::parseStrata(cli.strata, g);
+  if (cli.nee == "off") r.estimator = render::Estimator::BsdfOnly;
+  if (cli.nee == "on" && r.estimator == render::Estimator::BsdfOnly) r.estimator = render::Estimator::Mis;
+  g.seed = r.seed;
+  guiding::validate(g);
+}
+
 }  // namespace qlight::game

@@ -3,6 +3,7 @@
 #include <CLI/CLI.hpp>
 #include <string>
 
+#include "engine/guiding/guiding_settings.h"
 #include "engine/render/render_settings.h"
 
 namespace qlight::game {
@@ -14,6 +15,17 @@ struct CommonOptions {
 
 // Adds --width --height --seed --max-depth --estimator --rr --exposure --tonemap.
 void addRenderOptions(CLI::App& app, render::RenderSettings& s);
+
+// Adds --guiding --strata --alpha-min --alpha-max --points --light-learning
+// --select-probability --point-set --nee. `strata` and `nee` are applied by
+// finishGuidingOptions after parsing.
+struct GuidingCli {
+  std::string strata;
+  std::string nee;  // "", "on" or "off"
+};
+void addGuidingOptions(CLI::App& app, guiding::GuidingSettings& g, GuidingCli& cli);
+void finishGuidingOptions(const GuidingCli& cli, guiding::GuidingSettings& g,
+                          render::RenderSettings& r);
 
 // Exit code when the validation layer reported something (tests treat it as failure).
 constexpr int kExitValidation = 3;

@@ -12,7 +12,7 @@
 #include "engine/render/gpu_scene.h"
 #include "engine/render/path_tracer.h"
 #include "engine/render/scene_extract.h"
-#include "engine/render/stats_json.h"
+#include "engine/session/stats_json.h"
 #include "engine/scene/gltf_loader.h"
 #include "game/context_setup.h"
 #include "game/demo_window.h"
@@ -125,6 +125,8 @@ std::function<int()> addDemoCommand(CLI::App& app, const CommonOptions& common) 
   cmd->add_option("--spp-per-frame", args->settings.samplesPerFrame, "samples per pixel per frame")
       ->check(CLI::Range(1, 4096));
   cmd->add_flag("--headless", args->headless, "render frames to files even with a display");
+  cmd->add_option("--exit-after-frames", args->exitAfterFrames, "window: close after this many frames (0: never)");
+  cmd->add_option("--screenshot-at-exit", args->screenshotAtExit, "window: write the render as PNG on closing");
   addRenderOptions(*cmd, args->settings);
   return [cmd, args, &common]() -> int {
     if (!cmd->parsed()) return -1;

@@ -17,9 +17,17 @@ struct DemoArgs {
   std::string outDir = "out/demo";
   bool headless = false;
   render::RenderSettings settings;
+  // Window mode: the render is the window's size times renderScale (a smaller
+  // render keeps a software rasterizer interactive); settings.width/height are unused.
+  uint32_t windowWidth = 960;
+  uint32_t windowHeight = 540;
+  float renderScale = 0.5f;
+  uint32_t exitAfterFrames = 0;  // 0: run until the window closes
+  std::string screenshotAtExit;  // PNG of the render written when the window closes
 };
 
-// Runs until the window closes; returns the exit code. glfwInit() has succeeded.
+// Runs until the window closes; returns the exit code (non-zero after printing
+// one error line when the window, surface or swapchain fails). glfwInit() has succeeded.
 int runWindowed(const DemoArgs& args, const CommonOptions& common);
 
 }  // namespace qlight::game

@@ -4,8 +4,8 @@
 #include <memory>
 
 #include "engine/gpu/context.h"
-#include "engine/render/offline_render.h"
-#include "engine/render/stats_json.h"
+#include "engine/session/offline_render.h"
+#include "engine/session/stats_json.h"
 #include "engine/scene/gltf_loader.h"
 #include "game/context_setup.h"
 
@@ -20,15 +20,18 @@ struct RenderArgs {
   uint32_t batch = 4;
   float time = 0.0f;
   render::RenderSettings settings;
+  guiding::GuidingSettings guiding;
+  GuidingCli guidingCli;
 };
 
-int runRender(const RenderArgs& a, const CommonOptions& common) {
+int runRender(RenderArgs a, const CommonOptions& common) {
   render::checkImageExtension(a.out);
+  finishGuidingOptions(a.guidingCli, a.guiding, a.settings);
   scene::SceneAsset asset = scene::loadGltf(a.scene);
   auto ctx = createContext(common, /*windowed=*/false);
   render::RenderSettings s = a.settings;
   s.samplesPerFrame = std::min(a.batch, a.spp);
-  render::OfflineRender result = render::renderScene(*ctx, asset, s, a.spp, a.time);
+  render::OfflineRender result = render::renderScene(*ctx, asset, s, a.spp, a.time, a.guiding);
   render::writeImage(a.out, result.image, s.exposure, s.tonemap);
   nlohmann::json stats = render::statsToJson(result.stats);
   stats["scene"] = a.scene;
@@ -38,6 +41,12 @@ int runRender(const RenderArgs& a, const CommonOptions& common) {
   stats["estimator"] = s.estimator == render::Estimator::Mis ? "mis"
                        : s.estimator == render::Estimator::BsdfOnly ? "bsdf" : "nee";
   stats["russian_roulette"] = s.russianRoulette;
+  if (a.guiding.enabled) {
+    stats["strata"] = std::to_string(a.guiding.rows) + "x" + std::to_string(a.guiding.cols);
+    stats["alpha_min"] = a.guiding.alphaMin;
+    stats["alpha_max"] = a.guiding.alphaMax;
+    stats["light_learning"] = a.guiding.lightLearning;
+  }
   if (!a.statsJson.empty()) render::writeJson(a.statsJson, stats);
   std::printf("qlight: %s -> %s: %ux%u, %u spp in %.2f s, %.2f Mrays/s\n", a.scene.c_str(),
               a.out.c_str(), s.width, s.height, result.stats.spp, result.stats.seconds,
@@ -58,6 +67,7 @@ std::function<int()> addRenderCommand(CLI::App& app, const CommonOptions& common
   cmd->add_option("--time", args->time, "animation time in seconds")->check(CLI::Range(0.0, 1e6));
   cmd->add_option("--stats-json", args->statsJson, "write render statistics here");
   addRenderOptions(*cmd, args->settings);
+  addGuidingOptions(*cmd, args->guiding, args->guidingCli);
   return [cmd, args, &common]() -> int {
     if (!cmd->parsed()) return -1;
     return runRender(*args, common);

@@ -180,6 +180,16 @@ void GpuScene::update(const SceneDraw& draw) {
   for (const MeshDraw& d : draw.meshes)
     if (d.mesh >= asset_.meshes.size()) throw std::out_of_range("mesh draw names no mesh");
   accel_.buildInstances(draw.meshes);
+  surfaceArea_ = 0.0f;
+  for (const MeshDraw& d : draw.meshes) {
+    const scene::MeshAsset& mesh = asset_.meshes[d.mesh];
+    for (size_t t = 0; t < mesh.triangleCount(); ++t) {
+      glm::vec3 p[3];
+      for (int k = 0; k < 3; ++k)
+        p[k] = glm::vec3(d.worldFromObject * glm::vec4(mesh.positions[mesh.indices[t * 3 + k]], 1.0f));
+      surfaceArea_ += 0.5f * glm::length(glm::cross(p[1] - p[0], p[2] - p[0]));
+    }
+  }
   std::vector<shared::GpuInstance> instances;
   for (const MeshDraw& d : draw.meshes) {
     shared::GpuInstance inst{};

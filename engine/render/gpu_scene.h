@@ -34,6 +34,7 @@ class GpuScene {
   uint32_t lightCount() const { return lightCount_; }
   bool usesFallbackSky() const { return fallbackSky_; }
   uint32_t triangleCount() const { return triangleCount_; }
+  float surfaceArea() const { return surfaceArea_; }  // world space, of the last update
   const glm::vec3& boundsCenter() const { return center_; }
   float boundsRadius() const { return radius_; }
   const std::vector<shared::GpuLight>& lights() const { return lights_; }
@@ -55,6 +56,7 @@ class GpuScene {
   bool fallbackSky_ = false;
   glm::vec3 center_{0.0f};
   float radius_ = 1.0f;
+  float surfaceArea_ = 0.0f;
 
   std::unique_ptr<gpu::Buffer> vertices_, triangleBuffer_, materials_, textures_, texels_;
   std::unique_ptr<gpu::BufferView> texelView_;

@@ -16,12 +16,14 @@ FrameCounters& FrameCounters::operator+=(const FrameCounters& o) {
   emitterHits += o.emitterHits;
   pathVertices += o.pathVertices;
   invalidSamples += o.invalidSamples;
+  coveredVertices += o.coveredVertices;
   return *this;
 }
 
 PathTracer::PathTracer(const gpu::Context& ctx, const RenderSettings& settings)
     : ctx_(ctx),
       trace_(ctx, "path_trace"),
+      noGuiding_(ctx),
       frameUniforms_(ctx, sizeof(FrameUniforms), "frame.uniforms", 0, gpu::MemoryUse::HostVisible),
       stats_(ctx, shared::kStatCount * sizeof(uint32_t), "frame.stats") {
   setSettings(settings);
@@ -51,7 +53,7 @@ void PathTracer::resetAccumulation() {
 }
 
 void PathTracer::recordFrame(gpu::PassRecorder& rec, const GpuScene& scene,
-                             const CameraView& camera) {
+                             const CameraView& camera, const GuidingBinder& guiding) {
   if (!cameraValid_ || !(camera == lastCamera_)) {
     if (cameraValid_) resetAccumulation();
     lastCamera_ = camera;
@@ -91,6 +93,7 @@ void PathTracer::recordFrame(gpu::PassRecorder& rec, const GpuScene& scene,
   for (uint32_t s = 0; s < settings_.samplesPerFrame; ++s) {
     auto pass = rec.pass("path_trace", trace_);
     scene.bind(pass);
+    if (guiding) guiding(pass); else noGuiding_.bind(pass);
     pass.read(QL_BIND_FRAME, frameUniforms_)
         .write(QL_BIND_ACCUM, *accum_)
         .write(QL_BIND_STATS, stats_)
@@ -110,6 +113,7 @@ FrameCounters PathTracer::collectCounters() {
   c.emitterHits = raw[shared::kStatEmitterHits];
   c.pathVertices = raw[shared::kStatPathVertices];
   c.invalidSamples = raw[shared::kStatInvalidSamples];
+  c.coveredVertices = raw[shared::kStatCoveredVertices];
   return c;
 }
 

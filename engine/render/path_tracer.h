@@ -12,13 +12,14 @@
 #include "engine/gpu/image.h"
 #include "engine/render/gpu_scene.h"
 #include "engine/render/image_io.h"
+#include "engine/render/null_guiding.h"
 #include "engine/render/render_settings.h"
 
 namespace qlight::render {
 
 struct FrameCounters {
   uint64_t rays = 0, shadowRays = 0, paths = 0, emitterHits = 0, pathVertices = 0,
-           invalidSamples = 0;
+           invalidSamples = 0, coveredVertices = 0;
   FrameCounters& operator+=(const FrameCounters& o);
 };
 
@@ -35,8 +36,10 @@ class PathTracer {
   uint32_t accumulatedSamples() const { return accumulated_; }
 
   // Records settings.samplesPerFrame samples of `scene` seen from `camera`.
-  // The camera moving restarts accumulation.
-  void recordFrame(gpu::PassRecorder& recorder, const GpuScene& scene, const CameraView& camera);
+  // The camera moving restarts accumulation. `guiding` binds the learned
+  // distributions (engine/guiding); without it paths are not guided.
+  void recordFrame(gpu::PassRecorder& recorder, const GpuScene& scene, const CameraView& camera,
+                   const GuidingBinder& guiding = {});
   // After the frame's fence: its counters (the stats buffer is cleared for the next frame).
   FrameCounters collectCounters();
 
@@ -48,6 +51,7 @@ class PathTracer {
   const gpu::Context& ctx_;
   RenderSettings settings_;
   gpu::ComputePipeline trace_;
+  NullGuiding noGuiding_;
   std::unique_ptr<gpu::Image> accum_;
   gpu::Buffer frameUniforms_;
   gpu::Buffer stats_;

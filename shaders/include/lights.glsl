@@ -52,18 +52,17 @@ float triangleLightPdf(GpuLight l, float selectPdf, vec3 dir, float dist) {
 
 float skyLightPdf(float selectPdf) { return selectPdf * uniformSpherePdf(); }
 
-LightSample sampleLight(vec3 x, vec3 u, uint count) {
+// Samples a point or direction on light `index`, chosen with probability selectPdf.
+LightSample sampleLight(vec3 x, vec2 u, uint index, float selectPdf) {
   LightSample s;
   s.pdf = 0.0;
   s.delta = false;
   s.distance = 1e30;
   s.radiance = vec3(0.0);
   s.direction = vec3(0.0, 0.0, 1.0);
-  float selectPdf;
-  uint index = selectLight(u.z, count, selectPdf);
   GpuLight l = lights[index];
   if (l.type == kLightTriangle) {
-    vec3 bary = sampleTriangleBarycentrics(u.xy);
+    vec3 bary = sampleTriangleBarycentrics(u);
     vec3 p = l.position + bary.y * l.edge1 + bary.z * l.edge2;
     vec3 d = p - x;
     float dist = length(d);
@@ -101,7 +100,7 @@ LightSample sampleLight(vec3 x, vec3 u, uint count) {
     s.pdf = selectPdf;
     s.delta = true;
   } else {  // sky
-    s.direction = sampleUniformSphere(u.xy);
+    s.direction = sampleUniformSphere(u);
     s.radiance = l.emission;
     s.pdf = skyLightPdf(selectPdf);
   }

@@ -5,7 +5,9 @@
 // C++:   engine/bvh/cpu_traversal.h
 //
 // traceClosest / traceAny take a world-space ray (direction need not be unit
-// length; t is measured along it) and report hits with 0 < t < tMax.
+// length; t is measured along it) and report hits with 0 < t < tMax. Every
+// step pops or descends, so any input (NaN included) ends; the builder caps
+// tree depths so the fixed stack cannot overflow.
 // Shape of the loop (Aila & Laine 2009, "while-while"): descend inner nodes
 // until the current ref is a leaf, then work through pending leaves. A TLAS
 // leaf is an instance: the ray moves to object space (not renormalized, so t
@@ -34,7 +36,9 @@ QL_FN float bvhSafeRcp(float x) {
   return abs(x) > 1e-20f ? 1.0f / x : (x >= 0.0f ? 1e20f : -1e20f);
 }
 
-QL_FN vec3 bvhSafeInverse(vec3 d) { return vec3(bvhSafeRcp(d.x), bvhSafeRcp(d.y), bvhSafeRcp(d.z)); }
+QL_FN vec3 bvhSafeInverse(vec3 d) {
+  return vec3(bvhSafeRcp(d.x), bvhSafeRcp(d.y), bvhSafeRcp(d.z));
+}
 
 // A ray in one BLAS's object space, with what the watertight test needs: the
 // rows of the shear that maps the ray onto +z (kz = the dominant axis of dir;
@@ -74,9 +78,10 @@ QL_FN BvhLocalRay bvhMakeLocalRay(vec3 origin, vec3 dir) {
   BvhLocalRay ray;
   ray.origin = origin;
   ray.invDir = bvhSafeInverse(dir);
-  ray.shearX = ex - (dot(ex, dir) / dz) * ez;
-  ray.shearY = ey - (dot(ey, dir) / dz) * ez;
-  ray.shearZ = (1.0f / dz) * ez;
+  float rcpDz = dot(ez, ray.invDir);  // dz is the largest component, so never below 1e-20
+  ray.shearX = ex - (dot(ex, dir) * rcpDz) * ez;
+  ray.shearY = ey - (dot(ey, dir) * rcpDz) * ez;
+  ray.shearZ = rcpDz * ez;
   return ray;
 }
 
@@ -126,17 +131,6 @@ QL_FN bool bvhIntersectTriangle(BvhLocalRay ray, vec3 p0, vec3 p1, vec3 p2, floa
   return true;
 }
 
-// Returns from the current level's stack; when the BLAS part of the stack is
-// empty, the next entry belongs to the TLAS, so the world ray comes back.
-#define QL_BVH_POP_                      \
-  if (sp == blasBase) {                  \
-    rayOrigin = origin;                  \
-    rayInvDir = worldInvDir;             \
-    blasBase = 0u;                       \
-  }                                      \
-  sp -= 1u;                              \
-  node = stack[sp];
-
 // Both entry points: anyHit stops at the first hit (the compiler folds the
 // constant after inlining).
 QL_FN bool bvhTrace(vec3 origin, vec3 dir, float tMax, bool anyHit, QL_OUT(BvhHit) hit) {
@@ -157,8 +151,8 @@ QL_FN bool bvhTrace(vec3 origin, vec3 dir, float tMax, bool anyHit, QL_OUT(BvhHi
   local.shearZ = vec3(0.0f);
   uint instance = kBvhInvalidIndex;
 
-  uint stack[kBvhStackSize];
-  stack[0] = 0u;  // ref 0 (the header node) ends the traversal
+  uint stack[kBvhStackSize + 1u];  // + 1: the inner loop's unconditional store
+  stack[0] = 0u;                   // ref 0 (the header node) ends the traversal
   uint sp = 1u;
   uint blasBase = 0u;  // stack depth when the current instance was entered; 0 in the TLAS
   uint node = floatBitsToUint(QL_BVH_NODE(kBvhHeaderNode).x);
@@ -188,18 +182,20 @@ QL_FN bool bvhTrace(vec3 origin, vec3 dir, float tMax, bool anyHit, QL_OUT(BvhHi
       bool rightHit = rightEnter <= rightExit;
       uint leftRef = floatBitsToUint(leftMin.w);
       uint rightRef = floatBitsToUint(rightMin.w);
-      if (leftHit && rightHit) {
-        bool rightFirst = rightEnter < leftEnter;
-        stack[sp] = rightFirst ? leftRef : rightRef;
-        sp += 1u;
-        node = rightFirst ? rightRef : leftRef;
-      } else if (leftHit) {
-        node = leftRef;
-      } else if (rightHit) {
-        node = rightRef;
-      } else {
-        QL_BVH_POP_
-      }
+      // Branch-free step (on lavapipe every branch side runs anyway): push the
+      // farther child when both are hit, pop when neither is. The store
+      // always happens; it lands above the top when nothing is pushed.
+      bool both = leftHit && rightHit;
+      bool none = !(leftHit || rightHit);
+      bool rightFirst = rightHit && (!leftHit || rightEnter < leftEnter);
+      uint top = stack[sp - 1u];
+      stack[sp] = rightFirst ? leftRef : rightRef;
+      bool leaveBlas = none && sp == blasBase;  // the pop returns to the TLAS
+      rayOrigin = leaveBlas ? origin : rayOrigin;
+      rayInvDir = leaveBlas ? worldInvDir : rayInvDir;
+      blasBase = leaveBlas ? 0u : blasBase;
+      sp = none ? sp - 1u : (both ? sp + 1u : sp);
+      node = none ? top : (rightFirst ? rightRef : leftRef);
     }
     // Leaves: enter an instance (TLAS) or test up to 8 triangles (BLAS).
     while (int(node) < 0) {
@@ -230,13 +226,18 @@ QL_FN bool bvhTrace(vec3 origin, vec3 dir, float tMax, bool anyHit, QL_OUT(BvhHi
           if (anyHit) return true;
         }
       }
-      QL_BVH_POP_
+      // Pop; when the BLAS part of the stack is empty the next entry belongs
+      // to the TLAS, so the world ray comes back.
+      bool leaveBlas = sp == blasBase;
+      rayOrigin = leaveBlas ? origin : rayOrigin;
+      rayInvDir = leaveBlas ? worldInvDir : rayInvDir;
+      blasBase = leaveBlas ? 0u : blasBase;
+      sp -= 1u;
+      node = stack[sp];
     }
   }
   return found;
 }
-
-#undef QL_BVH_POP_
 
 // Nearest hit with 0 < t < tMax; on a miss hit.t = tMax and the indices are
 // kBvhInvalidIndex.

@@ -124,8 +124,9 @@ QL_CONST uint kStatRays = 0u;           // every ray traced, shadow rays include
 QL_CONST uint kStatShadowRays = 1u;
 QL_CONST uint kStatPaths = 2u;
 QL_CONST uint kStatEmitterHits = 3u;    // paths whose scattered (not shadow) ray reached an emitter
-QL_CONST uint kStatPathVertices = 4u;   // sum of path lengths (scattering vertices)
+QL_CONST uint kStatPathVertices = 4u;   // sum of path lengths: scattering vertices until the path ends or first reaches an emitter by a scattered ray (D&K's measure)
 QL_CONST uint kStatInvalidSamples = 5u; // NaN/Inf samples dropped (should stay 0)
+QL_CONST uint kStatCoveredVertices = 6u; // scattering vertices that found a cache point
 QL_CONST uint kStatCount = 8u;
 
 // Bindings of path_trace.comp.

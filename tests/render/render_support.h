@@ -4,7 +4,7 @@
 #include <cmath>
 #include <vector>
 
-#include "engine/render/offline_render.h"
+#include "engine/session/offline_render.h"
 #include "engine/scene/gltf_loader.h"
 #include "tests/gpu/gpu_fixture.h"
 

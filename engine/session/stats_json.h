@@ -4,7 +4,7 @@
 #include <filesystem>
 #include <nlohmann/json.hpp>
 
-#include "engine/render/offline_render.h"
+#include "engine/session/offline_render.h"
 
 namespace qlight::render {
 

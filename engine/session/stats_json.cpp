@@ -1,4 +1,4 @@
-#include "engine/render/stats_json.h"
+#include "engine/session/stats_json.h"
 
 #include <fstream>
 #include <stdexcept>
@@ -32,6 +32,25 @@ nlohmann::json statsToJson(const RenderStats& s) {
   }
   j["gpu_ms"] = gpu;
   j["gpu_ms_total"] = total;
+  j["guiding"] = s.guided ? "q" : "off";
+  j["covered_vertices"] = c.coveredVertices;
+  if (s.guided) {
+    const auto& g = s.guidingStats;
+    double guidingMs = 0;
+    for (auto& [name, ms] : s.gpuMs)
+      if (name.rfind("guiding", 0) == 0 || name.rfind("prefix_sum", 0) == 0) guidingMs += ms;
+    j["guiding_stats"] = {{"points", g.points},
+                          {"strata", g.strata},
+                          {"lights_learned", g.lightsLearned},
+                          {"rejection_min", g.rejectionMin},
+                          {"rejection_max", g.rejectionMax},
+                          {"search_radius", g.searchRadius},
+                          {"spawned_points", g.spawnedPoints},
+                          {"point_generation_seconds", s.pointGenerationSeconds},
+                          {"learning_gpu_ms_per_frame", guidingMs / std::max(1u, s.frames)}};
+  }
+  j["emitter_hit_share_by_frame"] = s.emitterHitShareByFrame;
+  j["mean_path_length_by_frame"] = s.pathLengthByFrame;
   return j;
 }
 

@@ -1,0 +1,46 @@
+#include "engine/guiding/guiding_settings.h"
+
+#include <cmath>
+#include <stdexcept>
+
+#include "engine/gpu/prefix_sum.h"
+
+namespace qlight::guiding {
+
+void validate(const GuidingSettings& s) {
+  auto finite = [](float v) { return std::isfinite(v); };
+  if (s.rows == 0 || s.cols == 0 || s.strata() > gpu::PrefixSum::kMaxSegmentLength)
+    throw std::invalid_argument("strata must be RxC with 1 <= R*C <= 1024");
+  if (!finite(s.alphaMin) || !finite(s.alphaMax) || s.alphaMin <= 0 || s.alphaMax > 1 ||
+      s.alphaMin > s.alphaMax)
+    throw std::invalid_argument("learning rate bounds must satisfy 0 < alpha-min <= alpha-max <= 1");
+  if (!finite(s.selectProbability) || s.selectProbability < 0 || s.selectProbability > 0.95f)
+    throw std::invalid_argument("guided selection probability must be in [0, 0.95] (BSDF sampling keeps the rest)");
+  if (!finite(s.qFloor) || s.qFloor <= 0) throw std::invalid_argument("Q floor must be positive");
+  if (s.pointBudget == 0 || s.pointBudget > (1u << 20))
+    throw std::invalid_argument("point budget must be 1..1048576");
+  if (!finite(s.rejectionMin) || !finite(s.rejectionMax) || s.rejectionMin < 0 ||
+      s.rejectionMax < 0 || (s.rejectionMax > 0 && s.rejectionMax < s.rejectionMin))
+    throw std::invalid_argument("rejection distances must be >= 0 with max >= min");
+  if (!finite(s.lightMix) || s.lightMix < 0 || s.lightMix > 0.95f)
+    throw std::invalid_argument("light mix must be in [0, 0.95] (power-based choice keeps the rest)");
+  if (s.dartBounces == 0 || s.dartBounces > 64) throw std::invalid_argument("dart bounces must be 1..64");
+}
+
+void parseStrata(const std::string& text, GuidingSettings& s) {
+  size_t x = text.find_first_of("xX");
+  try {
+    if (x == std::string::npos) throw std::invalid_argument("");
+    size_t used = 0;
+    int r = std::stoi(text.substr(0, x), &used);
+    if (used != x) throw std::invalid_argument("");
+    int c = std::stoi(text.substr(x + 1), &used);
+    if (used != text.size() - x - 1 || r <= 0 || c <= 0) throw std::invalid_argument("");
+    s.rows = uint32_t(r);
+    s.cols = uint32_t(c);
+  } catch (const std::exception&) {
+    throw std::invalid_argument("strata '" + text + "' is not of the form RxC, e.g. 8x8");
+  }
+}
+
+}  // namespace qlight::guiding

@@ -1,0 +1,44 @@
+// User settings of Q-learned importance sampling (CLI and UI).
+#pragma once
+#include <cstdint>
+#include <string>
+
+namespace qlight::guiding {
+
+enum class PointSet : uint32_t {
+  PhotonMap,  // fixed rejection distance (van Mastrigt's best)
+  PoissonAo,  // rejection distance from ambient occlusion, between min and max
+};
+
+struct GuidingSettings {
+  bool enabled = true;      // --guiding q|off
+  uint32_t rows = 8;        // strata: rows x cols, equal solid angle
+  uint32_t cols = 8;
+  float alphaMin = 1e-4f;   // learning rate clamp(1/(1+visits), min, max), vM's bounds
+  float alphaMax = 0.05f;
+  float selectProbability = 0.8f;  // guided vs BSDF sampling (times the diffuse share)
+  float qFloor = 1e-4f;     // Q stays above this: every direction stays possible
+  float initialQ = 1e-2f;
+  uint32_t pointBudget = 16384;  // --points
+  float rejectionMin = 0.0f;     // 0: from the budget and the scene's surface area
+  float rejectionMax = 0.0f;     // 0: 3 x min (Poisson-AO variant)
+  PointSet pointSet = PointSet::PhotonMap;
+  float normalCosine = 0.7f;     // compatible point normals (about 45 degrees)
+  uint32_t dartPaths = 65536;    // light paths that drop candidate points
+  uint32_t dartBounces = 4;
+  bool spawnFromCamera = true;   // add points where camera paths land uncovered
+  bool learn = true;             // update Q every frame (off: keep what was learned)
+  bool lightLearning = true;     // D&K section 4: learned light selection for NEE
+  float lightMix = 0.5f;         // share of the learned light choice
+  uint32_t seed = 1;
+
+  uint32_t strata() const { return rows * cols; }
+};
+
+// Throws std::invalid_argument with a message naming the setting.
+void validate(const GuidingSettings& s);
+
+// Parses "RxC" (e.g. 8x8, 16x8) into rows and cols.
+void parseStrata(const std::string& text, GuidingSettings& s);
+
+}  // namespace qlight::guiding

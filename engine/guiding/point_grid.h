@@ -1,0 +1,26 @@
+// The hashed uniform grid the GPU searches for the nearest cache point:
+// bucket starts (hashSize + 1) and point indices sorted by bucket.
+#pragma once
+#include <cstdint>
+#include <span>
+#include <vector>
+
+#include "engine/guiding/cache_point.h"
+
+namespace qlight::guiding {
+
+struct PointGrid {
+  float cellSize = 1.0f;
+  uint32_t hashSize = 1;  // power of two
+  std::vector<uint32_t> buckets;
+  std::vector<uint32_t> points;
+};
+
+PointGrid buildPointGrid(std::span<const CachePoint> points, float cellSize, uint32_t hashSize);
+
+// The same search as guiding.glsl's findCachePoint (tests compare against brute force).
+uint32_t findNearestPoint(const PointGrid& grid, std::span<const CachePoint> points,
+                          const glm::vec3& p, const glm::vec3& n, float searchRadius,
+                          float normalCosine);
+
+}  // namespace qlight::guiding

@@ -1,0 +1,24 @@
+// Minimal guiding buffers (no cache points, everything off) for frames rendered
+// without Q-learned guiding: path_trace.comp binds the guiding slots always.
+#pragma once
+#include <functional>
+#include <memory>
+
+#include "engine/gpu/pass_recorder.h"
+
+namespace qlight::render {
+
+// Binds QL_BIND_GUIDING .. QL_BIND_V_COUNT of a path tracing pass.
+using GuidingBinder = std::function<void(gpu::PassBuilder&)>;
+
+class NullGuiding {
+ public:
+  explicit NullGuiding(const gpu::Context& ctx);
+  void bind(gpu::PassBuilder& pass) const;
+
+ private:
+  std::unique_ptr<gpu::Buffer> uniforms_, empty_;
+  std::vector<std::unique_ptr<gpu::Buffer>> writable_;
+};
+
+}  // namespace qlight::render

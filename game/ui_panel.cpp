@@ -1,0 +1,97 @@
+#include "game/ui_panel.h"
+
+#include <imgui.h>
+
+#include <algorithm>
+
+namespace qlight::game {
+
+PanelChanges drawQlightPanel(const StatsView& stats, render::RenderSettings& settings,
+                             float& renderScale, SceneClock& clock, FreeCamera& camera) {
+  PanelChanges changes;
+  ImGui::SetNextWindowPos(ImVec2(8, 8), ImGuiCond_FirstUseEver);
+  ImGui::SetNextWindowSize(ImVec2(330, 0), ImGuiCond_FirstUseEver);
+  ImGui::SetNextWindowBgAlpha(0.85f);
+  if (ImGui::Begin("qlight")) {
+    if (ImGui::CollapsingHeader("Stats", ImGuiTreeNodeFlags_DefaultOpen)) drawStatsSection(stats);
+    if (ImGui::CollapsingHeader("Render", ImGuiTreeNodeFlags_DefaultOpen))
+      changes.renderSettings = drawRenderSection(settings, renderScale);
+    if (ImGui::CollapsingHeader("Scene", ImGuiTreeNodeFlags_DefaultOpen))
+      changes.scenePose = drawSceneSection(clock);
+    if (ImGui::CollapsingHeader("Camera")) changes.resetCamera = drawCameraSection(camera);
+    ImGui::TextDisabled("WASD QE move, drag look, wheel speed, F1 UI, F12 shot");
+  }
+  ImGui::End();
+  return changes;
+}
+
+void drawStatsSection(const StatsView& v) {
+  const FrameStats& s = *v.stats;
+  ImGui::Text("%.1f ms/frame  %.1f FPS", s.frameMs(), s.fps());
+  ImGui::Text("%u spp accumulated at %ux%u", v.accumulatedSpp, v.renderWidth, v.renderHeight);
+  ImGui::Text("%.2f Mrays/s", s.mraysPerSecond());
+  ImGui::Text("emitter hits %.1f%% of paths", 100.0 * s.emitterHitShare());
+  ImGui::Text("mean path length %.2f vertices", s.meanPathLength());
+  if (s.gpuMs().empty()) {
+    ImGui::TextDisabled("GPU timings: no timestamps on this queue");
+  } else if (ImGui::BeginTable("gpu", 2, ImGuiTableFlags_SizingStretchProp)) {
+    for (auto& [name, ms] : s.gpuMs()) {
+      ImGui::TableNextColumn();
+      ImGui::TextUnformatted(name.c_str());
+      ImGui::TableNextColumn();
+      ImGui::Text("%.2f ms", ms);
+    }
+    ImGui::TableNextColumn();
+    ImGui::TextUnformatted("GPU total");
+    ImGui::TableNextColumn();
+    ImGui::Text("%.2f ms", s.gpuTotalMs());
+    ImGui::EndTable();
+  }
+  ImGui::TextDisabled("%s", v.device.c_str());
+}
+
+bool drawRenderSection(render::RenderSettings& s, float& renderScale) {
+  bool changed = false;
+  const char* estimators[] = {"MIS (NEE + BSDF)", "BSDF only", "NEE only"};
+  int estimator = int(s.estimator);
+  if (ImGui::Combo("estimator", &estimator, estimators, 3)) {
+    s.estimator = render::Estimator(estimator);
+    changed = true;
+  }
+  int depth = int(s.maxDepth);
+  if (ImGui::SliderInt("max depth", &depth, 0, 32)) s.maxDepth = uint32_t(depth), changed = true;
+  int spp = int(s.samplesPerFrame);
+  if (ImGui::SliderInt("samples/frame", &spp, 1, 16)) s.samplesPerFrame = uint32_t(spp), changed = true;
+  changed |= ImGui::Checkbox("Russian roulette", &s.russianRoulette);
+  changed |= ImGui::SliderFloat("exposure", &s.exposure, 0.05f, 20.0f, "%.2f",
+                                ImGuiSliderFlags_Logarithmic | ImGuiSliderFlags_AlwaysClamp);
+  const char* tonemaps[] = {"clamp", "ACES"};
+  int tonemap = int(s.tonemap);
+  if (ImGui::Combo("tonemap", &tonemap, tonemaps, 2)) s.tonemap = render::Tonemap(tonemap), changed = true;
+  changed |= ImGui::SliderFloat("render scale", &renderScale, 0.1f, 1.0f, "%.2f",
+                                ImGuiSliderFlags_AlwaysClamp);
+  int seed = int(s.seed);
+  if (ImGui::InputInt("seed", &seed)) s.seed = uint32_t(std::max(seed, 0)), changed = true;
+  return changed;
+}
+
+bool drawSceneSection(SceneClock& clock) {
+  if (!clock.animated()) {
+    ImGui::TextDisabled("static scene (no animation)");
+    return false;
+  }
+  if (ImGui::Button(clock.playing ? "pause" : "play")) clock.playing = !clock.playing;
+  bool moved = ImGui::SliderFloat("time", &clock.time, 0.0f, clock.duration, "%.2f s");
+  ImGui::SliderFloat("speed", &clock.speed, 0.0f, 4.0f, "%.2fx");
+  return moved;
+}
+
+bool drawCameraSection(FreeCamera& camera) {
+  ImGui::SliderFloat("speed##camera", &camera.speed, 0.01f, 100.0f, "%.2f /s",
+                     ImGuiSliderFlags_Logarithmic);
+  ImGui::Text("position %.2f %.2f %.2f", camera.position.x, camera.position.y, camera.position.z);
+  ImGui::Text("yaw %.0f  pitch %.0f deg", camera.yaw * 57.2958f, camera.pitch * 57.2958f);
+  return ImGui::Button("reset (R)");
+}
+
+}  // namespace qlight::game

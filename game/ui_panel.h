@@ -1,0 +1,36 @@
+// The demo window's ImGui panel "qlight": Stats, Render, Scene and Camera
+// sections. Each section edits plain state and reports what changed; the
+// window decides what that means for the renderer.
+#pragma once
+#include <string>
+
+#include "engine/render/render_settings.h"
+#include "game/window_camera.h"
+#include "game/window_scene.h"
+#include "game/window_stats.h"
+
+namespace qlight::game {
+
+struct StatsView {
+  const FrameStats* stats = nullptr;
+  uint32_t accumulatedSpp = 0;
+  uint32_t renderWidth = 0, renderHeight = 0;
+  std::string device;
+};
+
+struct PanelChanges {
+  bool renderSettings = false;  // `settings` or `renderScale` edited
+  bool scenePose = false;       // the time slider moved
+  bool resetCamera = false;
+};
+
+// Draws the whole panel; returns what the user changed this frame.
+PanelChanges drawQlightPanel(const StatsView& stats, render::RenderSettings& settings,
+                             float& renderScale, SceneClock& clock, FreeCamera& camera);
+
+void drawStatsSection(const StatsView& view);
+bool drawRenderSection(render::RenderSettings& settings, float& renderScale);
+bool drawSceneSection(SceneClock& clock);  // true: the pose changed
+bool drawCameraSection(FreeCamera& camera);  // true: reset requested
+
+}  // namespace qlight::game

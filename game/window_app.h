@@ -1,0 +1,67 @@
+// The interactive demo: a window presenting the path tracer's accumulating
+// image, a free camera, the animated scene and the ImGui panel. One frame in
+// flight: the path tracer's per-frame buffers are single-buffered.
+#pragma once
+#include <chrono>
+#include <memory>
+
+#include "engine/gpu/context.h"
+#include "engine/gpu/gpu_timer.h"
+#include "engine/render/gpu_scene.h"
+#include "engine/render/path_tracer.h"
+#include "engine/scene/scene_asset.h"
+#include "engine/ui/display_pass.h"
+#include "engine/ui/glfw_window.h"
+#include "engine/ui/imgui_layer.h"
+#include "engine/ui/presenter.h"
+#include "game/demo_window.h"
+#include "game/window_camera.h"
+#include "game/window_input.h"
+#include "game/window_scene.h"
+#include "game/window_stats.h"
+
+namespace qlight::game {
+
+class WindowApp {
+ public:
+  WindowApp(const DemoArgs& args, const CommonOptions& common);
+  WindowApp(const WindowApp&) = delete;
+  WindowApp& operator=(const WindowApp&) = delete;
+  ~WindowApp();
+
+  // The frame loop; returns the exit code (validation messages make it non-zero).
+  int run();
+
+ private:
+  using Clock = std::chrono::steady_clock;
+  void collectPreviousFrame(double seconds);
+  void handleActions(const WindowActions& actions);
+  // The tracer follows the edited settings and the window size; true if it restarted.
+  void applySettings(VkExtent2D windowExtent);
+  void poseScene();
+  void recordFrame(const ui::PresentTarget& target);
+  void resetCamera();
+  float renderAspect() const;
+
+  DemoArgs args_;
+  scene::SceneAsset asset_;
+  ui::GlfwWindow window_;
+  std::unique_ptr<gpu::Context> ctx_;
+  ui::Presenter presenter_;
+  ui::ImGuiLayer imgui_;
+  render::GpuScene gpuScene_;
+  render::RenderSettings wanted_;  // what the panel edits; the tracer follows
+  float renderScale_;
+  render::PathTracer tracer_;
+  ui::DisplayPass display_;
+  gpu::GpuTimer timer_;
+  InputReader input_;
+  FreeCamera camera_;
+  SceneClock clock_;
+  FrameStats stats_;
+  bool uiVisible_ = true;
+  bool frameInFlight_ = false;
+  bool screenshotPending_ = false;
+};
+
+}  // namespace qlight::game

@@ -1,0 +1,128 @@
+// Cache points, their hashed grid and learned Q distributions, as the path
+// tracer uses them: nearest compatible point, guided sampling and pdf, and the
+// Q-learning targets it accumulates for the update pass (D&K eq. 5).
+#extension GL_EXT_shader_atomic_float : require
+
+layout(binding = QL_BIND_GUIDING, scalar) readonly buffer Guiding { GuidingUniforms guiding; };
+layout(binding = QL_BIND_CACHE_POINTS, scalar) readonly buffer CachePoints { GpuCachePoint cachePoints[]; };
+layout(binding = QL_BIND_GRID_BUCKETS, scalar) readonly buffer GridBuckets { uint gridBuckets[]; };
+layout(binding = QL_BIND_GRID_POINTS, scalar) readonly buffer GridPoints { uint gridPoints[]; };
+layout(binding = QL_BIND_Q_CDF, scalar) readonly buffer QCdf { float qCdf[]; };
+layout(binding = QL_BIND_Q_SUM, scalar) buffer QSum { float qSum[]; };
+layout(binding = QL_BIND_Q_COUNT, scalar) buffer QCount { uint qCount[]; };
+layout(binding = QL_BIND_SPAWN, scalar) buffer Spawn { uint spawnCount; uint spawnPad0, spawnPad1, spawnPad2; vec4 spawnEntries[]; };
+layout(binding = QL_BIND_V_CDF, scalar) readonly buffer VCdf { float vCdf[]; };
+layout(binding = QL_BIND_V_SUM, scalar) buffer VSum { float vSum[]; };
+layout(binding = QL_BIND_V_COUNT, scalar) buffer VCount { uint vCount[]; };
+
+#define QL_CDF_AT(i) qCdf[i]
+#include "shared/strata.h"
+
+uint strataCount() { return guiding.rows * guiding.cols; }
+
+
+// The nearest point within the search radius whose normal is compatible. The
+// cell size is twice the radius, so the 2x2x2 cells around p cover the sphere.
+uint findCachePoint(vec3 p, vec3 n) {
+  if (guiding.pointCount == 0u) return kNoCachePoint;
+  ivec3 base = ivec3(floor(p / guiding.cellSize - 0.5));
+  float best = guiding.searchRadius * guiding.searchRadius;
+  uint bestIndex = kNoCachePoint;
+  for (int i = 0; i < 8; ++i) {
+    uint h = gridCellHash(base + ivec3(i & 1, (i >> 1) & 1, (i >> 2) & 1), guiding.hashSize);
+    uint end = gridBuckets[h + 1u];
+    for (uint j = gridBuckets[h]; j < end; ++j) {
+      uint index = gridPoints[j];
+      GpuCachePoint cp = cachePoints[index];
+      vec3 d = cp.position - p;
+      float d2 = dot(d, d);
+      if (d2 < best && dot(cp.normal, n) >= guiding.normalCosine) {
+        best = d2;
+        bestIndex = index;
+      }
+    }
+  }
+  return bestIndex;
+}
+
+TangentFrame pointFrame(uint point) { return frameFromNormal(cachePoints[point].normal); }
+
+float guidedPdfWorld(uint point, TangentFrame f, vec3 dir) {
+  return guidedPdf(point * strataCount(), localFromWorld(f, dir), guiding.rows, guiding.cols);
+}
+
+// Q of one stratum, recovered from the CDF of Q_k cosInt_k.
+float storedQ(uint point, uint k) {
+  uint base = point * strataCount();
+  float below = k > 0u ? qCdf[base + k - 1u] : 0.0;
+  return (qCdf[base + k] - below) / stratumCosineIntegral(k, guiding.rows, guiding.cols);
+}
+
+// The Q table entry of direction `dir` leaving the point, or ~0 below its horizon.
+uint qEntry(uint point, TangentFrame f, vec3 dir) {
+  vec3 local = localFromWorld(f, dir);
+  if (local.z <= 0.0) return kNoCachePoint;
+  return point * strataCount() + stratumOfDirection(local, guiding.rows, guiding.cols);
+}
+
+// Radiance the vertex scatters toward wo, estimated from Q at its point: the
+// diffuse lobe integrates Q against albedo/pi exactly per stratum (the CDF's
+// total is sum Q_k cosInt_k); the specular lobe takes Q from the mirror direction.
+float scatteredEstimate(uint point, BsdfParams bsdf, vec3 woLocal, vec3 woWorld, vec3 shadingNormal) {
+  uint n = strataCount();
+  float total = qCdf[point * n + n - 1u];
+  float estimate = luminance(bsdfDiffuseAlbedo(bsdf, woLocal.z)) * kInvPi * total;
+  vec3 fresnel = specularFresnel(bsdf, woLocal.z);
+  if (fresnel != vec3(0.0)) {
+    vec3 mirror = reflect(-woWorld, shadingNormal);
+    vec3 local = localFromWorld(pointFrame(point), mirror);
+    if (local.z > 0.0)
+      estimate += luminance(fresnel) * storedQ(point, stratumOfDirection(local, guiding.rows, guiding.cols));
+  }
+  return estimate;
+}
+
+void recordQTarget(uint entry, float target) {
+  if (entry == kNoCachePoint || !(target >= 0.0) || !(target < 1e30)) return;
+  atomicAdd(qSum[entry], target);
+  atomicAdd(qCount[entry], 1u);
+}
+
+// Camera hits that no point covers become candidates for new points.
+void reportUncovered(vec3 p, vec3 n) {
+  uint slot = atomicAdd(spawnCount, 1u);
+  if (slot < guiding.spawnCapacity) {
+    spawnEntries[2u * slot] = vec4(p, 0.0);
+    spawnEntries[2u * slot + 1u] = vec4(n, 0.0);
+  }
+}
+
+// --- learned light selection, D&K section 4: V(point, light) ---
+
+bool lightLearningOn(uint point) {
+  return (guiding.flags & kGuideLightLearn) != 0u && point != kNoCachePoint && guiding.lightCount > 0u;
+}
+
+float learnedLightProbability(uint point, uint light) {
+  uint base = point * guiding.lightCount;
+  float below = light > 0u ? vCdf[base + light - 1u] : 0.0;
+  return (vCdf[base + light] - below) / vCdf[base + guiding.lightCount - 1u];
+}
+
+uint sampleLearnedLight(uint point, float u) {
+  uint base = point * guiding.lightCount;
+  float target = u * vCdf[base + guiding.lightCount - 1u];
+  uint lo = 0u, hi = guiding.lightCount - 1u;
+  while (lo < hi) {
+    uint mid = (lo + hi) >> 1u;
+    if (vCdf[base + mid] > target) hi = mid; else lo = mid + 1u;
+  }
+  return lo;
+}
+
+void recordVTarget(uint point, uint light, float target) {
+  if (!(target >= 0.0) || !(target < 1e30)) return;
+  uint entry = point * guiding.lightCount + light;
+  atomicAdd(vSum[entry], target);
+  atomicAdd(vCount[entry], 1u);
+}

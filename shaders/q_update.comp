@@ -1,0 +1,29 @@
+#version 460
+// The update pass: applies the frame's accumulated Q-learning targets of each
+// table entry at once (learning rate from its visit count), keeps the value
+// above the floor and finite, and writes the weight the CDF pass sums.
+#extension GL_EXT_scalar_block_layout : require
+#extension GL_GOOGLE_include_directive : require
+#include "shared/guiding_types.h"
+#include "shared/strata.h"
+
+layout(local_size_x = 256) in;
+layout(binding = 0, scalar) buffer Values { float values[]; };
+layout(binding = 1, scalar) buffer Visits { uint visits[]; };
+layout(binding = 2, scalar) writeonly buffer Weights { float weights[]; };
+layout(binding = 3, scalar) buffer Sums { float sums[]; };
+layout(binding = 4, scalar) buffer Counts { uint counts[]; };
+layout(push_constant, scalar) uniform Push { TableUpdatePush pc; };
+
+void main() {
+  uint e = gl_GlobalInvocationID.x;
+  if (e >= pc.entries) return;
+  uint m = counts[e];
+  float next = updatedQ(values[e], sums[e], m, visits[e], pc.alphaMin, pc.alphaMax, pc.floorValue);
+  values[e] = next;
+  visits[e] += m;
+  sums[e] = 0.0;
+  counts[e] = 0u;
+  uint k = e % pc.segmentLength;
+  weights[e] = pc.cosineWeights != 0u ? guidedStratumWeight(next, k, pc.rows, pc.cols) : next;
+}

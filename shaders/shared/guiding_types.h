@@ -1,0 +1,140 @@
+// Q-learned importance sampling (Dahm & Keller 2017; van Mastrigt 2018): GPU
+// structs, bindings, and the learning-rate arithmetic, shared by GLSL and C++.
+#ifndef QLIGHT_SHARED_GUIDING_TYPES_H
+#define QLIGHT_SHARED_GUIDING_TYPES_H
+#include "common.h"
+
+QL_BEGIN
+
+// A cache point: a surface point with a hemisphere of strata. Its slot in the
+// Q tables is its index in the point array (the ECS storage order).
+struct GpuCachePoint {
+  vec3 position;
+  float radius;  // rejection distance it was accepted with
+  vec3 normal;
+  uint pad;
+};
+QL_CHECK_SIZE(GpuCachePoint, 32);
+
+// Guiding switches (GuidingUniforms.flags).
+QL_CONST uint kGuideSample = 1u;      // sample directions from the learned distributions
+QL_CONST uint kGuideLearn = 2u;       // update Q from the paths traced this frame
+QL_CONST uint kGuideLightLearn = 4u;  // learn light selection V(point, light) and use it for NEE
+QL_CONST uint kGuideSpawn = 8u;       // report camera hits with no cache point nearby
+
+struct GuidingUniforms {
+  uint rows;              // strata rows (equal-height zones in cos theta)
+  uint cols;              // strata columns (phi segments)
+  uint pointCount;
+  uint flags;
+  float searchRadius;     // nearest-point search radius
+  float cellSize;         // hashed grid cell (>= 2 searchRadius, so 2x2x2 cells cover it)
+  uint hashSize;          // buckets (power of two)
+  float selectProbability;  // chance of a guided sample (scaled by the diffuse share)
+  float normalCosine;     // a point is compatible when dot(normals) >= this
+  float qFloor;           // every Q stays above this, so every direction stays possible
+  float lightMix;         // share of the learned light choice (the rest by power)
+  uint lightCount;        // lights with learned values (0: light learning off)
+  uint spawnCapacity;     // entries in the spawn buffer
+  float alphaMin;
+  float alphaMax;
+  uint pad0;
+};
+QL_CHECK_SIZE(GuidingUniforms, 64);
+
+QL_CONST uint kNoCachePoint = 0xffffffffu;
+
+// Bindings of the guiding buffers in path_trace.comp (after the scene's).
+#define QL_BIND_GUIDING 14
+#define QL_BIND_CACHE_POINTS 15
+#define QL_BIND_GRID_BUCKETS 16
+#define QL_BIND_GRID_POINTS 17
+#define QL_BIND_Q_CDF 18
+#define QL_BIND_Q_SUM 19
+#define QL_BIND_Q_COUNT 20
+#define QL_BIND_SPAWN 21
+#define QL_BIND_V_CDF 22
+#define QL_BIND_V_SUM 23
+#define QL_BIND_V_COUNT 24
+
+// Bucket of a grid cell in the hashed grid of cache points (CPU build and GPU
+// lookup must agree, so both use this).
+QL_FN uint gridCellHash(ivec3 c, uint hashSize) {
+  return (uint(c.x) * 73856093u ^ uint(c.y) * 19349663u ^ uint(c.z) * 83492791u) & (hashSize - 1u);
+}
+
+// Push constants of q_update.comp (used for Q and for the light values V).
+struct TableUpdatePush {
+  uint entries;
+  uint segmentLength;  // entries per cache point
+  uint rows;           // strata rows and columns when cosineWeights is set
+  uint cols;
+  uint cosineWeights;  // 1: CDF weights are Q_k cosInt_k (Q); 0: the values themselves (V)
+  float alphaMin;
+  float alphaMax;
+  float floorValue;
+};
+QL_CHECK_SIZE(TableUpdatePush, 32);
+
+// Push constants of guiding_darts.comp: light paths whose hits are candidate points.
+struct DartsPush {
+  uint pathCount;
+  uint maxBounces;
+  uint lightCount;
+  uint seed;
+  vec3 sceneCenter;
+  float sceneRadius;
+  float aoRadius;
+  uint aoRays;
+  uint capacity;
+  uint pad;
+};
+QL_CHECK_SIZE(DartsPush, 48);
+#define QL_BIND_DART_CANDIDATES 25
+
+// Learning rate of update n (n earlier updates): clamp(1 / (1 + n), min, max).
+QL_FN float learningRate(uint n, float alphaMin, float alphaMax) {
+  return clamp(1.0f / (1.0f + float(n)), alphaMin, alphaMax);
+}
+
+// The fraction of the old value left after m updates starting at visit
+// count n0: prod_{i<m} (1 - learningRate(n0 + i)). Closed form: constant
+// factors where the rate is clamped, and a telescoping n / (n + 1) product
+// where it is 1 / (1 + n). With it, m updates of one frame apply at once:
+//   Q <- keep Q + (1 - keep) mean(targets)
+// which equals applying them one by one when the targets are equal, and for
+// the unclamped 1/(1+n) schedule is exactly the running mean of all targets.
+QL_FN float retainedAfterUpdates(uint n0, uint m, float alphaMin, float alphaMax) {
+  if (m == 0u) return 1.0f;
+  // Rate alphaMax for n < nA, 1/(1+n) for nA <= n < nC, alphaMin for n >= nC.
+  float nAf = alphaMax >= 1.0f ? 0.0f : ceil(1.0f / alphaMax - 1.0f);
+  float nCf = alphaMin > 0.0f ? floor(1.0f / alphaMin - 1.0f) + 1.0f : 4.0e9f;
+  nCf = max(nCf, nAf);
+  float lo = float(n0);
+  float hi = float(n0) + float(m);  // exclusive
+  float countA = max(0.0f, min(hi, nAf) - lo);
+  float b0 = max(lo, nAf);
+  float b1 = min(hi, nCf);
+  float countC = max(0.0f, hi - max(lo, nCf));
+  float keep = 1.0f;
+  if (countA > 0.0f) keep *= pow(1.0f - alphaMax, countA);
+  if (b1 > b0) keep *= b0 / b1;
+  if (countC > 0.0f) keep *= pow(1.0f - alphaMin, countC);
+  return keep;
+}
+
+// One entry's update from a frame's m targets summing to targetSum. A
+// non-finite result keeps the old value: NaN or Inf never enters a table.
+QL_FN float updatedQ(float q, float targetSum, uint m, uint visits, float alphaMin,
+                     float alphaMax, float qFloor) {
+  if (m == 0u) return max(q, qFloor);
+  float keep = retainedAfterUpdates(visits, m, alphaMin, alphaMax);
+  float mean = targetSum / float(m);
+  float next = keep * q + (1.0f - keep) * mean;
+  if (!(next >= 0.0f) || !(next < 3.0e38f)) next = q;  // catches NaN (comparisons fail) and Inf
+  return max(next, qFloor);
+}
+
+QL_END
+
+#endif
