@@ -1,0 +1,30 @@
+// Internal to the glTF loader: each step turns one part of a tinygltf::Model (already parsed
+// from a checked file) into SceneAsset data, validating indices and values as it goes.
+#pragma once
+
+#include <tiny_gltf.h>
+
+#include "engine/scene/gltf_context.h"
+#include "engine/scene/scene_asset.h"
+
+namespace qlight::scene::detail {
+
+// Materials, then the textures they use (a texture's sRGB flag comes from its uses).
+void convertMaterials(const tinygltf::Model& model, SceneAsset& scene, LoadContext& ctx);
+void convertTextures(const tinygltf::Model& model, SceneAsset& scene, LoadContext& ctx);
+
+// Meshes; appends the default material when a primitive has none.
+void convertMeshes(const tinygltf::Model& model, SceneAsset& scene, LoadContext& ctx);
+
+// Nodes (with the hierarchy checked to be a forest) and the roots of the scene shown.
+void convertNodes(const tinygltf::Model& model, SceneAsset& scene, LoadContext& ctx);
+
+// Cameras (orthographic ones become perspective once bounds are known: see
+// replaceOrthographicCameras) and KHR_lights_punctual lights.
+void convertCameras(const tinygltf::Model& model, SceneAsset& scene, LoadContext& ctx);
+void convertLights(const tinygltf::Model& model, SceneAsset& scene, LoadContext& ctx);
+void replaceOrthographicCameras(const tinygltf::Model& model, SceneAsset& scene, LoadContext& ctx);
+
+void convertAnimations(const tinygltf::Model& model, SceneAsset& scene, LoadContext& ctx);
+
+}  // namespace qlight::scene::detail

@@ -1,0 +1,26 @@
+// Internal to the glTF loader: reads a .gltf/.glb file and checks what tinygltf trusts
+// blindly (GLB chunk sizes, buffer sizes against their data, buffer views inside their
+// buffers, required extensions), so that tinygltf is only called on input it survives.
+#pragma once
+
+#include <cstdint>
+#include <filesystem>
+#include <string>
+#include <vector>
+
+#include "engine/scene/gltf_context.h"
+
+namespace qlight::scene::detail {
+
+struct CheckedGltfFile {
+  std::vector<uint8_t> bytes;  // the whole file
+  bool binary = false;         // GLB container
+  std::string baseDir;         // for external buffers and images
+};
+
+// Extensions the loader implements; any other in extensionsRequired is an error.
+bool isSupportedRequiredExtension(const std::string& name);
+
+CheckedGltfFile readAndCheckGltfFile(const std::filesystem::path& path, LoadContext& ctx);
+
+}  // namespace qlight::scene::detail

@@ -1,0 +1,21 @@
+// glTF 2.0 import (.gltf with embedded or external buffers, and .glb) into plain data.
+#pragma once
+
+#include <filesystem>
+
+#include "engine/scene/scene_asset.h"
+
+namespace qlight::scene {
+
+// Extensions read: KHR_lights_punctual, KHR_materials_emissive_strength,
+// KHR_materials_specular (specularFactor only); these may be in extensionsRequired.
+//
+// Loads the file into a SceneAsset. Throws std::runtime_error with one line,
+// "<path>: <problem>", for a missing or unreadable file, malformed JSON, missing or truncated
+// buffers, anything that would read out of bounds (accessors, buffer views, indices), an
+// unsupported required extension, or a value that is not finite. Things it can do without
+// (points and lines, morph weight animation, skins, unknown texture extensions) are skipped
+// with a warning in SceneAsset::warnings, also printed to stderr.
+SceneAsset loadGltf(const std::filesystem::path& path);
+
+}  // namespace qlight::scene

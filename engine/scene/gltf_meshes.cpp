@@ -1,0 +1,288 @@
+// glTF meshes into MeshAsset: triangle primitives concatenated, strips and fans turned into
+// lists, flat normals where the file has none, morph targets applied at the default weights.
+#include <cmath>
+#include <map>
+#include <numeric>
+
+#include "engine/scene/gltf_accessor.h"
+#include "engine/scene/gltf_convert.h"
+
+namespace qlight::scene::detail {
+namespace {
+
+// One primitive's vertices and triangles before they join the mesh.
+struct PrimitiveData {
+  std::vector<glm::vec3> positions;
+  std::vector<glm::vec3> normals;  // empty: generate flat normals
+  std::vector<glm::vec2> uv0;
+  std::vector<uint32_t> triangles;  // 3 per triangle
+};
+
+std::vector<glm::vec3> toVec3(const std::vector<float>& f) {
+  std::vector<glm::vec3> out(f.size() / 3);
+  for (size_t i = 0; i < out.size(); ++i) out[i] = {f[3 * i], f[3 * i + 1], f[3 * i + 2]};
+  return out;
+}
+
+std::vector<glm::vec3> readVec3Attribute(const tinygltf::Model& model, int accessor,
+                                         size_t vertexCount, const std::string& use,
+                                         LoadContext& ctx) {
+  std::vector<glm::vec3> values = toVec3(readFloatAccessor(model, accessor, {3, false}, use, ctx));
+  if (vertexCount != 0 && values.size() != vertexCount)
+    ctx.fail(use + " has " + std::to_string(values.size()) + " elements but POSITION has " +
+             std::to_string(vertexCount));
+  return values;
+}
+
+glm::vec3 faceNormal(glm::vec3 a, glm::vec3 b, glm::vec3 c) {
+  const glm::vec3 n = glm::cross(b - a, c - a);
+  const float len = glm::length(n);
+  return len > 0.0f && std::isfinite(len) ? n / len : glm::vec3(0.0f, 1.0f, 0.0f);
+}
+
+// Vertex order of each triangle for the primitive's mode (glTF spec 3.7.2.1).
+std::vector<uint32_t> triangulate(const std::vector<uint32_t>& v, int mode,
+                                  const std::string& owner, LoadContext& ctx) {
+  std::vector<uint32_t> out;
+  const size_t n = v.size();
+  if (mode == TINYGLTF_MODE_TRIANGLES) {
+    if (n % 3 != 0)
+      ctx.warn(owner + " has " + std::to_string(n) +
+               " indices, not a multiple of 3; the rest is dropped");
+    out.assign(v.begin(), v.begin() + long(n / 3 * 3));
+  } else if (n >= 3) {
+    out.reserve((n - 2) * 3);
+    for (size_t i = 0; i + 2 < n; ++i) {
+      if (mode == TINYGLTF_MODE_TRIANGLE_STRIP) {
+        const size_t odd = i % 2;
+        out.insert(out.end(), {v[i], v[i + 1 + odd], v[i + 2 - odd]});
+      } else {  // fan
+        out.insert(out.end(), {v[i + 1], v[i + 2], v[0]});
+      }
+    }
+  }
+  return out;
+}
+
+void applyMorphTargets(const tinygltf::Model& model, const tinygltf::Mesh& mesh,
+                       const tinygltf::Primitive& prim, const std::string& owner,
+                       PrimitiveData& data, LoadContext& ctx) {
+  if (prim.targets.empty()) return;
+  if (!mesh.weights.empty() && mesh.weights.size() != prim.targets.size())
+    ctx.fail(owner + " has " + std::to_string(prim.targets.size()) +
+             " morph targets but the mesh has " + std::to_string(mesh.weights.size()) + " weights");
+  ctx.warn(owner +
+           " morph targets are applied at the mesh's default weights; weight "
+           "animation is not supported");
+  for (size_t t = 0; t < prim.targets.size(); ++t) {
+    const double weight = mesh.weights.empty() ? 0.0 : mesh.weights[t];
+    ctx.requireFinite(weight, owner + " morph weight");
+    const std::string use = owner + " target " + std::to_string(t);
+    for (const auto& [name, accessor] : prim.targets[t]) {
+      if (name != "POSITION" && name != "NORMAL") {
+        checkAccessorBounds(model, accessor, use + " " + name, ctx);
+        continue;
+      }
+      const std::vector<glm::vec3> deltas =
+          readVec3Attribute(model, accessor, data.positions.size(), use + " " + name, ctx);
+      if (weight == 0.0) continue;
+      std::vector<glm::vec3>& base = name == "POSITION" ? data.positions : data.normals;
+      if (base.empty()) continue;  // normal deltas without normals: flat normals come later
+      for (size_t i = 0; i < base.size(); ++i) base[i] += float(weight) * deltas[i];
+    }
+  }
+}
+
+// Unit normals; a zero-length one is replaced by the area-weighted normal of its faces.
+void normalizeNormals(PrimitiveData& data) {
+  std::vector<glm::vec3> faceSum;
+  for (size_t i = 0; i < data.normals.size(); ++i) {
+    const float len = glm::length(data.normals[i]);
+    if (len > 1e-12f && std::isfinite(len)) {
+      data.normals[i] /= len;
+      continue;
+    }
+    if (faceSum.empty()) {
+      faceSum.assign(data.positions.size(), glm::vec3(0.0f));
+      for (size_t t = 0; t + 2 < data.triangles.size(); t += 3) {
+        const uint32_t a = data.triangles[t], b = data.triangles[t + 1], c = data.triangles[t + 2];
+        const glm::vec3 n = glm::cross(data.positions[b] - data.positions[a],
+                                       data.positions[c] - data.positions[a]);
+        faceSum[a] += n;
+        faceSum[b] += n;
+        faceSum[c] += n;
+      }
+    }
+    const float sumLen = glm::length(faceSum[i]);
+    data.normals[i] = sumLen > 0.0f ? faceSum[i] / sumLen : glm::vec3(0.0f, 1.0f, 0.0f);
+  }
+}
+
+// Without normals in the file, each triangle gets its own three vertices and its face normal.
+void makeFlat(PrimitiveData& data) {
+  PrimitiveData flat;
+  const size_t count = data.triangles.size();
+  flat.positions.reserve(count);
+  flat.normals.reserve(count);
+  flat.uv0.reserve(count);
+  for (size_t t = 0; t < count; t += 3) {
+    const uint32_t v[3] = {data.triangles[t], data.triangles[t + 1], data.triangles[t + 2]};
+    const glm::vec3 n =
+        faceNormal(data.positions[v[0]], data.positions[v[1]], data.positions[v[2]]);
+    for (uint32_t k : v) {
+      flat.triangles.push_back(uint32_t(flat.positions.size()));
+      flat.positions.push_back(data.positions[k]);
+      flat.normals.push_back(n);
+      flat.uv0.push_back(data.uv0[k]);
+    }
+  }
+  data = std::move(flat);
+}
+
+struct VertexKey {
+  int position, normal, uv;
+  friend auto operator<=>(const VertexKey&, const VertexKey&) = default;
+};
+
+int attributeOf(const tinygltf::Primitive& prim, const char* name) {
+  auto it = prim.attributes.find(name);
+  return it == prim.attributes.end() ? -1 : it->second;
+}
+
+const char* modeName(int mode) {
+  switch (mode) {
+    case TINYGLTF_MODE_POINTS:
+      return "POINTS";
+    case TINYGLTF_MODE_LINE:
+      return "LINES";
+    case TINYGLTF_MODE_LINE_LOOP:
+      return "LINE_LOOP";
+    case TINYGLTF_MODE_LINE_STRIP:
+      return "LINE_STRIP";
+    default:
+      return "an unknown mode";
+  }
+}
+
+}  // namespace
+
+void convertMeshes(const tinygltf::Model& model, SceneAsset& scene, LoadContext& ctx) {
+  const uint32_t defaultMaterial = uint32_t(model.materials.size());
+  bool defaultUsed = false;
+
+  for (size_t m = 0; m < model.meshes.size(); ++m) {
+    const tinygltf::Mesh& mesh = model.meshes[m];
+    MeshAsset out;
+    out.name = mesh.name;
+    std::map<VertexKey, uint32_t> sharedVertices;  // first vertex of each loaded vertex set
+    for (size_t p = 0; p < mesh.primitives.size(); ++p) {
+      const tinygltf::Primitive& prim = mesh.primitives[p];
+      const std::string owner = "mesh " + std::to_string(m) + " primitive " + std::to_string(p);
+      const int mode = prim.mode < 0 ? TINYGLTF_MODE_TRIANGLES : prim.mode;
+      if (mode != TINYGLTF_MODE_TRIANGLES && mode != TINYGLTF_MODE_TRIANGLE_STRIP &&
+          mode != TINYGLTF_MODE_TRIANGLE_FAN) {
+        ctx.warn(owner + " is " + modeName(mode) + ", not triangles; skipped");
+        continue;
+      }
+      auto positionIt = prim.attributes.find("POSITION");
+      if (positionIt == prim.attributes.end()) {
+        ctx.warn(owner + " has no POSITION; skipped");
+        continue;
+      }
+
+      PrimitiveData data;
+      data.positions = readVec3Attribute(model, positionIt->second, 0, owner + " POSITION", ctx);
+      const size_t vertexCount = data.positions.size();
+      for (const auto& [name, accessor] : prim.attributes) {
+        const std::string use = owner + " " + name;
+        if (name == "NORMAL") {
+          data.normals = readVec3Attribute(model, accessor, vertexCount, use, ctx);
+        } else if (name == "TEXCOORD_0") {
+          const std::vector<float> uv = readFloatAccessor(model, accessor, {2, true}, use, ctx);
+          if (uv.size() / 2 != vertexCount)
+            ctx.fail(use + " has " + std::to_string(uv.size() / 2) + " elements but POSITION has " +
+                     std::to_string(vertexCount));
+          data.uv0.resize(vertexCount);
+          for (size_t i = 0; i < vertexCount; ++i) data.uv0[i] = {uv[2 * i], uv[2 * i + 1]};
+        } else if (name != "POSITION") {
+          checkAccessorBounds(model, accessor, use, ctx);
+        }
+      }
+      if (data.uv0.empty()) data.uv0.assign(vertexCount, glm::vec2(0.0f));
+      applyMorphTargets(model, mesh, prim, owner, data, ctx);
+
+      std::vector<uint32_t> order;
+      if (prim.indices >= 0) {
+        order = readIndexAccessor(model, prim.indices, owner + " indices", ctx);
+        for (size_t i = 0; i < order.size(); ++i)
+          if (order[i] >= vertexCount)
+            ctx.fail(owner + " index " + std::to_string(order[i]) + " at position " +
+                     std::to_string(i) + " is out of range (" + std::to_string(vertexCount) +
+                     " vertices)");
+      } else {
+        order.resize(vertexCount);
+        std::iota(order.begin(), order.end(), 0u);
+      }
+      data.triangles = triangulate(order, mode, owner, ctx);
+      if (data.triangles.empty()) {
+        ctx.warn(owner + " has no triangles; skipped");
+        continue;
+      }
+
+      uint32_t material = defaultMaterial;
+      if (prim.material >= 0) {
+        if (size_t(prim.material) >= model.materials.size())
+          ctx.fail(owner + " uses material " + std::to_string(prim.material) +
+                   ", which does not exist (" + std::to_string(model.materials.size()) +
+                   " materials)");
+        material = uint32_t(prim.material);
+      } else {
+        defaultUsed = true;
+      }
+
+      // Primitives that share their vertex accessors (a common exporter layout: one vertex
+      // set, one index range per material) share their vertices here too.
+      const VertexKey key{attributeOf(prim, "POSITION"), attributeOf(prim, "NORMAL"),
+                          attributeOf(prim, "TEXCOORD_0")};
+      const bool shareable = key.normal >= 0 && prim.targets.empty();
+      auto shared = shareable ? sharedVertices.find(key) : sharedVertices.end();
+      uint32_t base;
+      if (shared != sharedVertices.end()) {
+        base = shared->second;
+      } else {
+        if (data.normals.empty()) {
+          makeFlat(data);
+        } else {
+          normalizeNormals(data);
+        }
+        base = uint32_t(out.positions.size());
+        out.positions.insert(out.positions.end(), data.positions.begin(), data.positions.end());
+        out.normals.insert(out.normals.end(), data.normals.begin(), data.normals.end());
+        out.uv0.insert(out.uv0.end(), data.uv0.begin(), data.uv0.end());
+        if (shareable) sharedVertices.emplace(key, base);
+      }
+      for (uint32_t v : data.triangles) out.indices.push_back(base + v);
+      out.triangleMaterials.insert(out.triangleMaterials.end(), data.triangles.size() / 3,
+                                   material);
+    }
+    if (out.positions.empty()) {
+      ctx.warn("mesh " + std::to_string(m) + " has no triangle primitives");
+    } else {
+      out.boundsMin = out.boundsMax = out.positions[0];
+      for (const glm::vec3& p : out.positions) {
+        out.boundsMin = glm::min(out.boundsMin, p);
+        out.boundsMax = glm::max(out.boundsMax, p);
+      }
+    }
+    scene.meshes.push_back(std::move(out));
+  }
+
+  if (defaultUsed) {
+    scene.defaultMaterial = int32_t(defaultMaterial);
+    MaterialAsset fallback;  // glTF's defaults: baseColor 1, metallic 1, roughness 1
+    fallback.name = "glTF default material";
+    scene.materials.push_back(fallback);
+  }
+}
+
+}  // namespace qlight::scene::detail
