@@ -1,0 +1,239 @@
+#include "engine/bvh/scene_bvh.h"
+
+#include <algorithm>
+#include <bit>
+#include <cmath>
+#include <stdexcept>
+#include <string>
+
+namespace qlight::bvh {
+namespace {
+
+using shared::kBvhInstanceTexels;
+using shared::kBvhLeafBit;
+using shared::kBvhLeafCountBits;
+using shared::kBvhNodeTexels;
+
+// Instance boxes grow by this fraction of their largest coordinate, so a ray
+// that reaches a triangle in object space (after its own rounding in the
+// transform) never misses the world-space box.
+constexpr double kInstanceBoxPad = 1.0 / (1 << 17);
+
+// Node boxes grow a little before they are written: the watertight test's t
+// is less exact than the slab test's (it is assembled from vertex offsets to
+// the origin, so its error scales with the triangle's size and coordinates),
+// and a box must never be culled by a hit distance that is off by that error.
+constexpr float kNodeBoxPadExtent = 1.0f / (1 << 17);
+constexpr float kNodeBoxPadMagnitude = 1.0f / (1 << 20);
+
+float bits(uint32_t u) { return std::bit_cast<float>(u); }
+
+Aabb padded(const Aabb& b) {
+  glm::vec3 e = b.extent();
+  glm::vec3 m = glm::max(glm::abs(b.min), glm::abs(b.max));
+  float pad = kNodeBoxPadExtent * std::max(e.x, std::max(e.y, e.z)) +
+              kNodeBoxPadMagnitude * std::max(m.x, std::max(m.y, m.z));
+  return Aabb{b.min - pad, b.max + pad};
+}
+
+glm::vec4 point(const glm::vec3& p, uint32_t w) { return glm::vec4(p, bits(w)); }
+
+bool finite(const glm::vec3& p) {
+  return std::isfinite(p.x) && std::isfinite(p.y) && std::isfinite(p.z);
+}
+
+// Refs of a built tree rebased into the concatenated arrays.
+uint32_t globalRef(uint32_t local, uint32_t nodeOffset, uint32_t triangleOffset) {
+  if (local & kBvhLeafBit) return local + (triangleOffset << kBvhLeafCountBits);
+  return local + nodeOffset;
+}
+
+void appendNodes(std::vector<glm::vec4>& out, const BuiltTree& tree, auto&& rebase) {
+  for (const BuildNode& n : tree.nodes) {
+    Aabb left = padded(n.box[0]), right = padded(n.box[1]);
+    out.push_back(point(left.min, rebase(n.child[0])));
+    out.push_back(point(left.max, 0));
+    out.push_back(point(right.min, rebase(n.child[1])));
+    out.push_back(point(right.max, 0));
+  }
+}
+
+Aabb transformBox(const glm::dmat4& m, const Aabb& box) {
+  glm::dvec3 lo(std::numeric_limits<double>::max());
+  glm::dvec3 hi(-std::numeric_limits<double>::max());
+  for (int corner = 0; corner < 8; ++corner) {
+    glm::dvec3 p((corner & 1) ? box.max.x : box.min.x, (corner & 2) ? box.max.y : box.min.y,
+                 (corner & 4) ? box.max.z : box.min.z);
+    glm::dvec3 q = glm::dvec3(m * glm::dvec4(p, 1.0));
+    lo = glm::min(lo, q);
+    hi = glm::max(hi, q);
+  }
+  glm::dvec3 m3 = glm::max(glm::abs(lo), glm::abs(hi));
+  double magnitude = std::max(m3.x, std::max(m3.y, m3.z));
+  double pad = magnitude * kInstanceBoxPad + 1e-30;
+  return Aabb{glm::vec3(lo - pad), glm::vec3(hi + pad)};
+}
+
+}  // namespace
+
+bool isDegenerateTriangle(const glm::vec3& p0, const glm::vec3& p1, const glm::vec3& p2) {
+  glm::vec3 n = glm::cross(p1 - p0, p2 - p0);
+  return n.x == 0.0f && n.y == 0.0f && n.z == 0.0f;
+}
+
+SceneBvh::SceneBvh() { writeHeader(); }
+
+uint32_t SceneBvh::addMesh(std::span<const glm::vec3> positions, std::span<const uint32_t> indices,
+                           const BuildOptions& options) {
+  if (indices.size() % 3 != 0) {
+    throw std::runtime_error("engine/bvh/scene_bvh.cpp: index count " +
+                             std::to_string(indices.size()) + " is not a multiple of 3");
+  }
+  const uint32_t meshTriangles = static_cast<uint32_t>(indices.size() / 3);
+  std::vector<PrimRef> prims;
+  prims.reserve(meshTriangles);
+  for (uint32_t t = 0; t < meshTriangles; ++t) {
+    glm::vec3 p[3];
+    for (int k = 0; k < 3; ++k) {
+      uint32_t index = indices[3 * t + k];
+      if (index >= positions.size()) {
+        throw std::runtime_error("engine/bvh/scene_bvh.cpp: index " + std::to_string(index) +
+                                 " out of range of " + std::to_string(positions.size()) +
+                                 " positions");
+      }
+      p[k] = positions[index];
+      if (!finite(p[k])) {
+        throw std::runtime_error("engine/bvh/scene_bvh.cpp: non-finite vertex position " +
+                                 std::to_string(index));
+      }
+    }
+    if (isDegenerateTriangle(p[0], p[1], p[2])) continue;
+    prims.push_back(
+        PrimRef{glm::min(p[0], glm::min(p[1], p[2])), t, glm::max(p[0], glm::max(p[1], p[2]))});
+  }
+
+  BlasInfo info;
+  info.meshTriangleCount = meshTriangles;
+  info.triangleOffset = static_cast<uint32_t>(flat_.triangleIndices.size());
+  info.nodeOffset = blasNodeEnd_;
+  if (uint64_t{info.triangleOffset} + prims.size() > shared::kBvhMaxTriangles) {
+    throw std::runtime_error("engine/bvh/scene_bvh.cpp: more than 2^28 triangles in all meshes");
+  }
+
+  flat_.nodes.resize(std::size_t{blasNodeEnd_} * kBvhNodeTexels);  // the top level goes stale
+  if (!prims.empty()) {
+    BuiltTree tree = buildSah(prims, options);
+    auto rebase = [&](uint32_t ref) {
+      return globalRef(ref, info.nodeOffset, info.triangleOffset);
+    };
+    appendNodes(flat_.nodes, tree, rebase);
+    for (const PrimRef& prim : prims) {
+      const uint32_t* tri = &indices[3 * prim.index];
+      flat_.triangles.push_back(point(positions[tri[0]], prim.index));
+      flat_.triangles.push_back(point(positions[tri[1]], 0));
+      flat_.triangles.push_back(point(positions[tri[2]], 0));
+      flat_.triangleIndices.push_back(prim.index);
+    }
+    info.rootRef = rebase(tree.rootRef);
+    info.nodeCount = static_cast<uint32_t>(tree.nodes.size());
+    info.triangleCount = static_cast<uint32_t>(prims.size());
+    info.depth = tree.depth;
+    info.bounds = padded(tree.bounds);
+    bool innerRoot = !(tree.rootRef & kBvhLeafBit);
+    info.rootChildren[0] = innerRoot ? padded(tree.nodes[0].box[0]) : info.bounds;
+    info.rootChildren[1] = innerRoot ? padded(tree.nodes[0].box[1]) : info.bounds;
+    blasNodeEnd_ += info.nodeCount;
+  }
+  blases_.push_back(info);
+  topLevel_ = TopLevelInfo{};
+  topLevel_.nodeOffset = blasNodeEnd_;
+  writeHeader();
+  return static_cast<uint32_t>(blases_.size() - 1);
+}
+
+void SceneBvh::rebuildTopLevel(std::span<const Instance> instances) {
+  instanceCount_ = static_cast<uint32_t>(instances.size());
+  flat_.instances.assign(instances.size() * kBvhInstanceTexels, glm::vec4(0.0f));
+  std::vector<PrimRef> prims;
+  prims.reserve(instances.size());
+  Aabb sceneBounds;
+  for (uint32_t i = 0; i < instanceCount_; ++i) {
+    const Instance& instance = instances[i];
+    if (instance.blas >= blases_.size()) {
+      throw std::runtime_error("engine/bvh/scene_bvh.cpp: instance " + std::to_string(i) +
+                               " names blas " + std::to_string(instance.blas) + " of " +
+                               std::to_string(blases_.size()));
+    }
+    const BlasInfo& blas = blases_[instance.blas];
+    glm::dmat4 worldFromObject(instance.worldFromObject);
+    glm::dmat4 objectFromWorld = glm::inverse(worldFromObject);
+    bool invertible = std::isfinite(glm::determinant(worldFromObject)) &&
+                      glm::determinant(worldFromObject) != 0.0;
+    for (int c = 0; c < 4; ++c) {
+      for (int r = 0; r < 4; ++r) {
+        invertible = invertible && std::isfinite(objectFromWorld[c][r]) &&
+                     std::isfinite(worldFromObject[c][r]);
+      }
+    }
+    bool hittable = invertible && blas.rootRef != 0;
+
+    glm::vec4* texels = &flat_.instances[std::size_t{i} * kBvhInstanceTexels];
+    glm::mat4 inverse = invertible ? glm::mat4(objectFromWorld) : glm::mat4(0.0f);
+    for (int r = 0; r < 3; ++r) {  // glm is column-major: m[column][row]
+      texels[shared::kBvhInstanceObjectFromWorld + r] =
+          glm::vec4(inverse[0][r], inverse[1][r], inverse[2][r], inverse[3][r]);
+      const glm::mat4& m = instance.worldFromObject;
+      texels[shared::kBvhInstanceWorldFromObject + r] =
+          glm::vec4(m[0][r], m[1][r], m[2][r], m[3][r]);
+    }
+    texels[shared::kBvhInstanceInfo] =
+        glm::vec4(bits(hittable ? blas.rootRef : 0), bits(blas.triangleOffset),
+                  bits(instance.customIndex), bits(instance.blas));
+    if (!hittable) continue;
+
+    Aabb world = transformBox(worldFromObject, blas.rootChildren[0]);
+    world.grow(transformBox(worldFromObject, blas.rootChildren[1]));
+    sceneBounds.grow(world);
+    prims.push_back(PrimRef{world.min, i, world.max});
+  }
+
+  flat_.nodes.resize(std::size_t{blasNodeEnd_} * kBvhNodeTexels);
+  topLevel_ = TopLevelInfo{};
+  topLevel_.nodeOffset = blasNodeEnd_;
+  topLevel_.hittableInstances = static_cast<uint32_t>(prims.size());
+  if (!prims.empty()) {
+    BuildOptions options;
+    options.maxLeafSize = 1;
+    options.maxDepth = shared::kBvhMaxTlasDepth;
+    if (levelsNeeded(static_cast<uint32_t>(prims.size()), 1) > options.maxDepth) {
+      throw std::runtime_error("engine/bvh/scene_bvh.cpp: " + std::to_string(prims.size()) +
+                               " instances exceed the 2^18 the top level holds");
+    }
+    BuiltTree tree = buildSah(prims, options);  // reorders prims: leaf i holds prims[i]
+    auto rebase = [&](uint32_t ref) {
+      if (ref & kBvhLeafBit) return kBvhLeafBit | prims[shared::bvhLeafFirst(ref)].index;
+      return ref + blasNodeEnd_;
+    };
+    appendNodes(flat_.nodes, tree, rebase);
+    topLevel_.rootRef = rebase(tree.rootRef);
+    topLevel_.nodeCount = static_cast<uint32_t>(tree.nodes.size());
+    topLevel_.depth = tree.depth;
+    topLevel_.bounds = padded(sceneBounds);
+  }
+  writeHeader();
+}
+
+void SceneBvh::writeHeader() {
+  if (flat_.nodes.size() < kBvhNodeTexels) flat_.nodes.resize(kBvhNodeTexels);
+  const Aabb& b = topLevel_.bounds;
+  bool hasBounds = !b.empty();
+  flat_.nodes[0] = glm::vec4(bits(topLevel_.rootRef), bits(instanceCount_), bits(blasNodeEnd_),
+                             bits(static_cast<uint32_t>(flat_.nodes.size() / kBvhNodeTexels)));
+  flat_.nodes[shared::kBvhHeaderSceneMin] =
+      point(hasBounds ? b.min : glm::vec3(0.0f), static_cast<uint32_t>(blases_.size()));
+  flat_.nodes[shared::kBvhHeaderSceneMax] = point(
+      hasBounds ? b.max : glm::vec3(0.0f), static_cast<uint32_t>(flat_.triangleIndices.size()));
+  flat_.nodes[3] = glm::vec4(0.0f);
+}
+
+}  // namespace qlight::bvh

@@ -1,0 +1,87 @@
+// Two-level BVH of a scene: one bottom level (BLAS) per mesh, built once, and
+// a top level (TLAS) over instances, rebuilt alone whenever instances move
+// (animated rigid nodes), in time O(n log n) in the instance count.
+//
+// Usage: addMesh() per mesh, then rebuildTopLevel(instances) each time the
+// instance list or a transform changes; upload flat(). After a top-level
+// rebuild only the header node, the node tail from topLevelNodeOffset() and
+// the instance array change. addMesh() empties the top level until the next
+// rebuildTopLevel().
+#pragma once
+
+#include <cstdint>
+#include <glm/glm.hpp>
+#include <span>
+#include <vector>
+
+#include "engine/bvh/aabb.h"
+#include "engine/bvh/flat_bvh.h"
+#include "engine/bvh/sah_builder.h"
+
+namespace qlight::bvh {
+
+struct Instance {
+  glm::mat4 worldFromObject{1.0f};
+  uint32_t blas = 0;         // index returned by addMesh
+  uint32_t customIndex = 0;  // the renderer's own id, stored in the instance texels
+};
+
+struct BlasInfo {
+  uint32_t rootRef = 0;  // global ref (node index or leaf); 0 when the mesh has no triangle
+  uint32_t nodeOffset = 0;
+  uint32_t nodeCount = 0;
+  uint32_t triangleOffset = 0;  // first texel triangle (index into flat().triangleIndices)
+  uint32_t triangleCount = 0;   // triangles kept (degenerate ones are dropped)
+  uint32_t meshTriangleCount = 0;
+  uint32_t depth = 0;
+  Aabb bounds;           // object space, padded like the node boxes
+  Aabb rootChildren[2];  // the root's child boxes (both = bounds for a leaf root)
+};
+
+struct TopLevelInfo {
+  uint32_t rootRef = 0;  // 0 when no instance can be hit
+  uint32_t nodeOffset = 0;
+  uint32_t nodeCount = 0;
+  uint32_t depth = 0;
+  uint32_t hittableInstances = 0;
+  Aabb bounds;  // world space, of the hittable instances
+};
+
+// Zero-area triangles (a vertex repeated, or collinear so the float cross
+// product is exactly zero) can never be hit and have no normal: the BLAS
+// leaves them out.
+bool isDegenerateTriangle(const glm::vec3& p0, const glm::vec3& p1, const glm::vec3& p2);
+
+class SceneBvh {
+ public:
+  SceneBvh();
+
+  // Builds the bottom level of one mesh and returns its index. positions in
+  // object space, indices are triplets. Throws std::runtime_error on an index
+  // out of range, a non-finite position or a count not divisible by 3.
+  uint32_t addMesh(std::span<const glm::vec3> positions, std::span<const uint32_t> indices,
+                   const BuildOptions& options = {});
+
+  // Rebuilds the top level and the instance array; BLASes stay untouched.
+  // Instances with a singular or non-finite transform, or an empty mesh, get
+  // their texels but cannot be hit. Throws on a bad blas index.
+  void rebuildTopLevel(std::span<const Instance> instances);
+
+  const FlatBvh& flat() const { return flat_; }
+  const BlasInfo& blas(uint32_t index) const { return blases_.at(index); }
+  uint32_t blasCount() const { return static_cast<uint32_t>(blases_.size()); }
+  const TopLevelInfo& topLevel() const { return topLevel_; }
+  // First node of the top level; nodes before it are the header and BLASes.
+  uint32_t topLevelNodeOffset() const { return blasNodeEnd_; }
+
+ private:
+  void writeHeader();
+
+  FlatBvh flat_;
+  std::vector<BlasInfo> blases_;
+  TopLevelInfo topLevel_;
+  uint32_t blasNodeEnd_ = 1;  // node 0 is the header
+  uint32_t instanceCount_ = 0;
+};
+
+}  // namespace qlight::bvh
