@@ -11,7 +11,8 @@
 #include "engine/gpu/pass_recorder.h"
 #include "engine/render/gpu_scene.h"
 #include "engine/render/path_tracer.h"
-#include "engine/render/scene_extract.h"
+#include "engine/guiding/q_guiding.h"
+#include "engine/session/scene_world.h"
 #include "engine/session/stats_json.h"
 #include "engine/scene/gltf_loader.h"
 #include "game/context_setup.h"
@@ -42,12 +43,17 @@ int runHeadless(const DemoArgs& a, const CommonOptions& common) {
   scene::SceneAsset asset = scene::loadGltf(resolveScene(a.scene));
   auto ctx = createContext(common, false);
   render::RenderSettings s = a.settings;
+  session::SceneWorld world(asset, float(s.width) / float(s.height));
   render::GpuScene gpuScene(*ctx, asset);
+  gpuScene.update(world.draw());
   render::PathTracer tracer(*ctx, s);
   gpu::GpuTimer timer(*ctx);
-  float aspect = float(s.width) / float(s.height);
-  Flythrough path{render::poseScene(asset, 0.0f, aspect).camera, asset.bounds.radius(),
-                  a.moveSeconds};
+  Flythrough path{world.camera(), asset.bounds.radius(), a.moveSeconds};
+  std::unique_ptr<guiding::QGuiding> guide;
+  if (a.guiding.enabled) {
+    guide = std::make_unique<guiding::QGuiding>(*ctx, a.guiding);
+    guide->generatePoints(world.registry(), gpuScene);
+  }
 
   fs::create_directories(a.outDir);
   nlohmann::json frames = nlohmann::json::array();
@@ -58,19 +64,23 @@ int runHeadless(const DemoArgs& a, const CommonOptions& common) {
   auto start = std::chrono::steady_clock::now();
   for (uint32_t f = 0; f < a.frames; ++f) {
     float t = float(f) / a.fps;
-    render::PosedScene posed = render::poseScene(asset, t, aspect);
-    gpuScene.update(posed.draw);
-    // Moving lights change the image: accumulation restarts (the learned
-    // distributions, once there, persist).
-    if (asset.animationDuration() > 0.0f) tracer.resetAccumulation();
+    world.advance(t);
+    if (world.moved()) {
+      // Moving lights change the image: accumulation restarts, while the
+      // learned distributions persist and follow the lights.
+      gpuScene.update(world.draw());
+      tracer.resetAccumulation();
+    }
     render::CameraView camera = path.at(t);
     auto frameStart = std::chrono::steady_clock::now();
     ctx->submitAndWait([&](VkCommandBuffer cmd) {
       timer.reset(cmd);
       gpu::PassRecorder rec(*ctx, cmd, &timer);
-      tracer.recordFrame(rec, gpuScene, camera);
+      tracer.recordFrame(rec, gpuScene, camera, guide ? guide->binder() : render::GuidingBinder{});
+      if (guide) guide->recordLearning(rec);
       rec.finish();
     });
+    if (guide) guide->afterFrame(world.registry());
     double frameSeconds =
         std::chrono::duration<double>(std::chrono::steady_clock::now() - frameStart).count();
     render::FrameCounters c = tracer.collectCounters();
@@ -85,6 +95,7 @@ int runHeadless(const DemoArgs& a, const CommonOptions& common) {
                       {"accumulated_spp", tracer.accumulatedSamples()},
                       {"rays", c.rays},
                       {"emitter_hit_share", double(c.emitterHits) / double(std::max<uint64_t>(c.paths, 1))},
+                      {"mean_path_length", double(c.pathVertices) / double(std::max<uint64_t>(c.paths, 1))},
                       {"gpu_ms", gpuMs}});
     bool last = f + 1 == a.frames;
     if (last || (a.saveEvery > 0 && f % a.saveEvery == 0)) {
@@ -96,6 +107,8 @@ int runHeadless(const DemoArgs& a, const CommonOptions& common) {
   total.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   total.lights = gpuScene.lightCount();
   total.fallbackSky = gpuScene.usesFallbackSky();
+  total.guided = bool(guide);
+  if (guide) total.guidingStats = guide->stats();
   nlohmann::json stats = render::statsToJson(total);
   stats["scene"] = resolveScene(a.scene);
   stats["mode"] = "headless";
@@ -128,8 +141,10 @@ std::function<int()> addDemoCommand(CLI::App& app, const CommonOptions& common) 
   cmd->add_option("--exit-after-frames", args->exitAfterFrames, "window: close after this many frames (0: never)");
   cmd->add_option("--screenshot-at-exit", args->screenshotAtExit, "window: write the render as PNG on closing");
   addRenderOptions(*cmd, args->settings);
+  addGuidingOptions(*cmd, args->guiding, args->guidingCli);
   return [cmd, args, &common]() -> int {
     if (!cmd->parsed()) return -1;
+    finishGuidingOptions(args->guidingCli, args->guiding, args->settings);
     if (!args->headless && displayAvailable() && glfwInit()) {
       args->scene = resolveScene(args->scene);
       return runWindowed(*args, common);

@@ -17,6 +17,8 @@ struct DemoArgs {
   std::string outDir = "out/demo";
   bool headless = false;
   render::RenderSettings settings;
+  guiding::GuidingSettings guiding;  // Q-learned guiding (on by default)
+  GuidingCli guidingCli;
   // Window mode: the render is the window's size times renderScale (a smaller
   // render keeps a software rasterizer interactive); settings.width/height are unused.
   uint32_t windowWidth = 960;

@@ -10,7 +10,8 @@ PanelChanges drawQlightPanel(const StatsView& stats, render::RenderSettings& set
                              float& renderScale, SceneClock& clock, FreeCamera& camera) {
   PanelChanges changes;
   ImGui::SetNextWindowPos(ImVec2(8, 8), ImGuiCond_FirstUseEver);
-  ImGui::SetNextWindowSize(ImVec2(330, 0), ImGuiCond_FirstUseEver);
+  float height = std::min(ImGui::GetIO().DisplaySize.y - 16.0f, 640.0f);
+  ImGui::SetNextWindowSize(ImVec2(330, std::max(height, 100.0f)), ImGuiCond_FirstUseEver);
   ImGui::SetNextWindowBgAlpha(0.85f);
   if (ImGui::Begin("qlight")) {
     if (ImGui::CollapsingHeader("Stats", ImGuiTreeNodeFlags_DefaultOpen)) drawStatsSection(stats);
@@ -47,6 +48,7 @@ void drawStatsSection(const StatsView& v) {
     ImGui::Text("%.2f ms", s.gpuTotalMs());
     ImGui::EndTable();
   }
+  if (!v.gpuTimesReliable) ImGui::TextDisabled("(pass timings undercount on this device)");
   ImGui::TextDisabled("%s", v.device.c_str());
 }
 

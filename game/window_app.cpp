@@ -147,7 +147,8 @@ int WindowApp::run() {
     bool posed = clock_.advance(step);
     if (uiVisible_) {
       StatsView view{&stats_, tracer_.accumulatedSamples(), tracer_.settings().width,
-                     tracer_.settings().height, ctx_->deviceName()};
+                     tracer_.settings().height, ctx_->deviceName(),
+                     ctx_->deviceName().find("llvmpipe") == std::string::npos};
       PanelChanges changes = drawQlightPanel(view, wanted_, renderScale_, clock_, camera_);
       posed |= changes.scenePose;
       if (changes.resetCamera) resetCamera();

@@ -7,7 +7,7 @@
 #include "engine/gpu/gpu_timer.h"
 #include "engine/gpu/pass_recorder.h"
 #include "engine/render/gpu_scene.h"
-#include "engine/render/scene_extract.h"
+#include "engine/session/scene_world.h"
 
 namespace qlight::render {
 
@@ -21,15 +21,17 @@ OfflineRender renderScene(const gpu::Context& ctx, const scene::SceneAsset& asse
                           const RenderSettings& settings, uint32_t spp, float timeSeconds,
                           const guiding::GuidingSettings& guidingSettings) {
   using Clock = std::chrono::steady_clock;
-  PosedScene posed = poseScene(asset, timeSeconds, float(settings.width) / float(settings.height));
+  session::SceneWorld world(asset, float(settings.width) / float(settings.height));
+  world.advance(timeSeconds);
+  const CameraView camera = world.camera();
   GpuScene gpuScene(ctx, asset);
-  gpuScene.update(posed.draw);
+  gpuScene.update(world.draw());
   PathTracer tracer(ctx, settings);
   gpu::GpuTimer timer(ctx);
 
   OfflineRender out;
   RenderStats& st = out.stats;
-  ecs::Registry registry;  // holds the cache points
+  ecs::Registry& registry = world.registry();  // the cache points join the scene's entities
   std::unique_ptr<guiding::QGuiding> guiding;
   if (guidingSettings.enabled) {
     auto t0 = Clock::now();
@@ -51,7 +53,7 @@ OfflineRender renderScene(const gpu::Context& ctx, const scene::SceneAsset& asse
     ctx.submitAndWait([&](VkCommandBuffer cmd) {
       timer.reset(cmd);
       gpu::PassRecorder rec(ctx, cmd, &timer);
-      tracer.recordFrame(rec, gpuScene, posed.camera, guiding ? guiding->binder() : GuidingBinder{});
+      tracer.recordFrame(rec, gpuScene, camera, guiding ? guiding->binder() : GuidingBinder{});
       if (guiding) guiding->recordLearning(rec);
       rec.finish();
     });

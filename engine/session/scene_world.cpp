@@ -1,0 +1,63 @@
+#include "engine/session/scene_world.h"
+
+#include "engine/scene/components.h"
+
+namespace qlight::session {
+
+SceneWorld::SceneWorld(const scene::SceneAsset& asset, float aspect) : asset_(asset) {
+  instance_ = scene::instantiate(asset, registry_, aspect);
+  // Registered out of order on purpose: the scheduler orders them by what
+  // they read and write (animation -> transforms -> extract).
+  scheduler_.add("extract")
+      .reads<scene::WorldTransform, scene::MeshInstance, scene::PunctualLight>()
+      .writes<render::SceneDraw>()
+      .run([this](ecs::Registry& r) { extract(r); });
+  scheduler_.add("transforms")
+      .reads<scene::LocalTransform, scene::Parent>()
+      .writes<scene::WorldTransform>()
+      .run([](ecs::Registry& r) { scene::transformSystem(r); });
+  scheduler_.add("animation")
+      .reads<scene::AnimatedNode>()
+      .writes<scene::LocalTransform>()
+      .run([this](ecs::Registry& r) { scene::animationSystem(r, asset_, time_, /*loop=*/true); });
+  scheduler_.compile();
+  registry_.storage<scene::WorldTransform>().markAllDirty();
+  advance(0.0f);
+}
+
+void SceneWorld::advance(float seconds) {
+  time_ = seconds;
+  scheduler_.runFrame(registry_);
+}
+
+void SceneWorld::extract(ecs::Registry& r) {
+  auto& world = r.storage<scene::WorldTransform>();
+  auto dirty = world.dirtyRange();
+  moved_ = dirty.end > dirty.begin;
+  world.clearDirty();
+  if (!moved_ && !draw_.meshes.empty()) return;
+  draw_ = {};
+  r.view<const scene::WorldTransform, const scene::MeshInstance>().each(
+      [&](const scene::WorldTransform& w, const scene::MeshInstance& m) {
+        draw_.meshes.push_back({m.mesh, w.worldFromLocal});
+      });
+  r.view<const scene::WorldTransform, const scene::PunctualLight>().each(
+      [&](const scene::WorldTransform& w, const scene::PunctualLight& l) {
+        scene::LightAsset light;
+        light.type = l.type;
+        light.color = l.color;
+        light.intensity = l.intensity;
+        light.range = l.range;
+        light.innerConeAngle = l.innerConeAngle;
+        light.outerConeAngle = l.outerConeAngle;
+        draw_.lights.push_back({light, w.worldFromLocal});
+      });
+}
+
+render::CameraView SceneWorld::camera() const {
+  const auto& w = registry_.get<scene::WorldTransform>(instance_.camera);
+  const auto& c = registry_.get<scene::Camera>(instance_.camera);
+  return render::cameraFromTransform(w.worldFromLocal, c.yfov);
+}
+
+}  // namespace qlight::session
