@@ -2,6 +2,18 @@
 
 #include <stdexcept>
 
+// The shader's search code, compiled for the CPU: its buffer reads go through
+// these per-thread pointers, set by findNearestPoint.
+namespace qlight::guiding::cpu {
+thread_local const shared::GpuCachePoint* tPoints = nullptr;
+thread_local const uint32_t* tBuckets = nullptr;
+thread_local const uint32_t* tGridPoints = nullptr;
+}  // namespace qlight::guiding::cpu
+#define QL_POINT_AT(i) (::qlight::guiding::cpu::tPoints[(i)])
+#define QL_GRID_BUCKET_AT(h) (::qlight::guiding::cpu::tBuckets[(h)])
+#define QL_GRID_POINT_AT(j) (::qlight::guiding::cpu::tGridPoints[(j)])
+#include "shaders/shared/point_search.h"
+
 namespace qlight::guiding {
 
 PointGrid buildPointGrid(std::span<const CachePoint> points, float cellSize, uint32_t hashSize) {
@@ -27,22 +39,12 @@ PointGrid buildPointGrid(std::span<const CachePoint> points, float cellSize, uin
 uint32_t findNearestPoint(const PointGrid& grid, std::span<const CachePoint> points,
                           const glm::vec3& p, const glm::vec3& n, float searchRadius,
                           float normalCosine) {
-  glm::ivec3 base(glm::floor(p / grid.cellSize - 0.5f));
-  float best = searchRadius * searchRadius;
-  uint32_t bestIndex = shared::kNoCachePoint;
-  for (int i = 0; i < 8; ++i) {
-    uint32_t h = shared::gridCellHash(base + glm::ivec3(i & 1, (i >> 1) & 1, (i >> 2) & 1), grid.hashSize);
-    for (uint32_t j = grid.buckets[h]; j < grid.buckets[h + 1]; ++j) {
-      const CachePoint& cp = points[grid.points[j]];
-      glm::vec3 d = cp.position - p;
-      float d2 = glm::dot(d, d);
-      if (d2 < best && glm::dot(cp.normal, n) >= normalCosine) {
-        best = d2;
-        bestIndex = grid.points[j];
-      }
-    }
-  }
-  return bestIndex;
+  static_assert(sizeof(CachePoint) == sizeof(shared::GpuCachePoint));
+  cpu::tPoints = reinterpret_cast<const shared::GpuCachePoint*>(points.data());
+  cpu::tBuckets = grid.buckets.data();
+  cpu::tGridPoints = grid.points.data();
+  return shared::findNearestCachePoint(p, n, grid.cellSize, grid.hashSize, searchRadius,
+                                       normalCosine);
 }
 
 }  // namespace qlight::guiding

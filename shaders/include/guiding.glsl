@@ -21,28 +21,15 @@ layout(binding = QL_BIND_V_COUNT, scalar) buffer VCount { uint vCount[]; };
 uint strataCount() { return guiding.rows * guiding.cols; }
 
 
-// The nearest point within the search radius whose normal is compatible. The
-// cell size is twice the radius, so the 2x2x2 cells around p cover the sphere.
+#define QL_POINT_AT(i) cachePoints[i]
+#define QL_GRID_BUCKET_AT(h) gridBuckets[h]
+#define QL_GRID_POINT_AT(j) gridPoints[j]
+#include "shared/point_search.h"
+
 uint findCachePoint(vec3 p, vec3 n) {
   if (guiding.pointCount == 0u) return kNoCachePoint;
-  ivec3 base = ivec3(floor(p / guiding.cellSize - 0.5));
-  float best = guiding.searchRadius * guiding.searchRadius;
-  uint bestIndex = kNoCachePoint;
-  for (int i = 0; i < 8; ++i) {
-    uint h = gridCellHash(base + ivec3(i & 1, (i >> 1) & 1, (i >> 2) & 1), guiding.hashSize);
-    uint end = gridBuckets[h + 1u];
-    for (uint j = gridBuckets[h]; j < end; ++j) {
-      uint index = gridPoints[j];
-      GpuCachePoint cp = cachePoints[index];
-      vec3 d = cp.position - p;
-      float d2 = dot(d, d);
-      if (d2 < best && dot(cp.normal, n) >= guiding.normalCosine) {
-        best = d2;
-        bestIndex = index;
-      }
-    }
-  }
-  return bestIndex;
+  return findNearestCachePoint(p, n, guiding.cellSize, guiding.hashSize, guiding.searchRadius,
+                               guiding.normalCosine);
 }
 
 TangentFrame pointFrame(uint point) { return frameFromNormal(cachePoints[point].normal); }

@@ -1,0 +1,84 @@
+// The GPU update and CDF passes on a synthetic table equal a CPU reference of
+// the formula (D&K eq. 5 with the batched learning rate), and nothing
+// non-finite enters the table.
+#include <cmath>
+#include <limits>
+#include <random>
+
+#include "engine/gpu/pass_recorder.h"
+#include "engine/gpu/prefix_sum.h"
+#include "shaders/shared/guiding_types.h"
+#include "shaders/shared/strata.h"
+#include "tests/gpu/gpu_fixture.h"
+
+namespace qlight::test {
+namespace {
+
+class QUpdateGpu : public GpuTest {};
+
+TEST_F(QUpdateGpu, UpdateAndCdfMatchCpuReference) {
+  const uint32_t points = 300, rows = 4, cols = 8, strata = rows * cols;
+  const uint32_t n = points * strata;
+  const float aMin = 1e-3f, aMax = 0.2f, qFloor = 1e-4f;
+  std::mt19937 rng(17);
+  std::uniform_real_distribution<float> u(0.0f, 2.0f);
+  std::vector<float> q(n), sums(n);
+  std::vector<uint32_t> visits(n), counts(n);
+  for (uint32_t e = 0; e < n; ++e) {
+    q[e] = u(rng);
+    visits[e] = rng() % 5000;
+    counts[e] = e % 5 == 0 ? 0 : rng() % 40;
+    sums[e] = counts[e] * u(rng) * 3.0f;
+  }
+  // Poisoned accumulators: a NaN and infinities must leave Q as it was.
+  sums[7] = std::numeric_limits<float>::quiet_NaN();
+  sums[8] = std::numeric_limits<float>::infinity();
+  counts[7] = counts[8] = 3;
+
+  gpu::Buffer bq(ctx(), n * 4, "q"), bv(ctx(), n * 4, "visits"), bc(ctx(), n * 4, "cdf"),
+      bs(ctx(), n * 4, "sums"), bn(ctx(), n * 4, "counts");
+  bq.upload<float>(ctx(), q);
+  bv.upload<uint32_t>(ctx(), visits);
+  bs.upload<float>(ctx(), sums);
+  bn.upload<uint32_t>(ctx(), counts);
+  gpu::ComputePipeline update(ctx(), "q_update");
+  gpu::PrefixSum scan(ctx());
+  ctx().submitAndWait([&](VkCommandBuffer cmd) {
+    gpu::PassRecorder rec(ctx(), cmd);
+    shared::TableUpdatePush push{n, strata, rows, cols, 1, aMin, aMax, qFloor};
+    rec.pass("q_update", update).write(0, bq).write(1, bv).write(2, bc).write(3, bs).write(4, bn)
+        .push(push).dispatchThreads(n);
+    scan.scanSegments(rec, bc, points, strata);
+    rec.finish();
+  });
+  auto gq = bq.read<float>(ctx());
+  auto gv = bv.read<uint32_t>(ctx());
+  auto gc = bc.read<float>(ctx());
+  auto gs = bs.read<float>(ctx());
+  auto gn = bn.read<uint32_t>(ctx());
+  for (uint32_t p = 0; p < points; ++p) {
+    double cdf = 0;
+    for (uint32_t k = 0; k < strata; ++k) {
+      uint32_t e = p * strata + k;
+      float expected = shared::updatedQ(q[e], sums[e], counts[e], visits[e], aMin, aMax, qFloor);
+      ASSERT_TRUE(std::isfinite(gq[e])) << e;
+      // GLSL's pow is exp2(y log2 x) with log2 good to 2^-21 absolute, so the
+      // retained fraction after m updates is good to about m 2^-21 relative;
+      // it scales the distance between the old value and the targets' mean.
+      double mean = counts[e] ? double(sums[e]) / counts[e] : q[e];
+      double spread = std::isfinite(mean) ? std::abs(q[e] - mean) : 0.0;
+      double tolerance = spread * (counts[e] + 1) * std::ldexp(1.0, -20) + 2e-6 * std::max(1.0f, expected);
+      ASSERT_NEAR(gq[e], expected, tolerance) << "entry " << e;
+      ASSERT_EQ(gv[e], visits[e] + counts[e]);
+      ASSERT_EQ(gs[e], 0.0f);
+      ASSERT_EQ(gn[e], 0u);
+      cdf += double(gq[e]) * shared::stratumCosineIntegral(k, rows, cols);  // the scan of what the update wrote
+      ASSERT_NEAR(gc[e], cdf, 1e-5 * cdf) << "cdf of entry " << e;
+    }
+  }
+  EXPECT_EQ(gq[7], q[7]);
+  EXPECT_EQ(gq[8], q[8]);
+}
+
+}  // namespace
+}  // namespace qlight::test
