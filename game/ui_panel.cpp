@@ -63,13 +63,15 @@ bool drawRenderSection(render::RenderSettings& s, float& renderScale) {
   int depth = int(s.maxDepth);
   if (ImGui::SliderInt("max depth", &depth, 0, 32)) s.maxDepth = uint32_t(depth), changed = true;
   int spp = int(s.samplesPerFrame);
-  if (ImGui::SliderInt("samples/frame", &spp, 1, 16)) s.samplesPerFrame = uint32_t(spp), changed = true;
+  if (ImGui::SliderInt("samples/frame", &spp, 1, 16))
+    s.samplesPerFrame = uint32_t(spp), changed = true;
   changed |= ImGui::Checkbox("Russian roulette", &s.russianRoulette);
   changed |= ImGui::SliderFloat("exposure", &s.exposure, 0.05f, 20.0f, "%.2f",
                                 ImGuiSliderFlags_Logarithmic | ImGuiSliderFlags_AlwaysClamp);
   const char* tonemaps[] = {"clamp", "ACES"};
   int tonemap = int(s.tonemap);
-  if (ImGui::Combo("tonemap", &tonemap, tonemaps, 2)) s.tonemap = render::Tonemap(tonemap), changed = true;
+  if (ImGui::Combo("tonemap", &tonemap, tonemaps, 2))
+    s.tonemap = render::Tonemap(tonemap), changed = true;
   changed |= ImGui::SliderFloat("render scale", &renderScale, 0.1f, 1.0f, "%.2f",
                                 ImGuiSliderFlags_AlwaysClamp);
   int seed = int(s.seed);

@@ -33,7 +33,7 @@ PanelChanges drawQlightPanel(const StatsView& stats, render::RenderSettings& set
 
 void drawStatsSection(const StatsView& view);
 bool drawRenderSection(render::RenderSettings& settings, float& renderScale);
-bool drawSceneSection(SceneClock& clock);  // true: the pose changed
+bool drawSceneSection(SceneClock& clock);    // true: the pose changed
 bool drawCameraSection(FreeCamera& camera);  // true: reset requested
 
 }  // namespace qlight::game

@@ -6,6 +6,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <filesystem>
 
 #include "engine/gpu/pass_recorder.h"
 #include "engine/scene/gltf_loader.h"
@@ -21,8 +22,9 @@ namespace {
 // The first frame's render size: the requested window times the scale.
 render::RenderSettings initialSettings(const DemoArgs& args) {
   render::RenderSettings s = args.settings;
-  s.width = std::max(1u, uint32_t(std::lround(args.windowWidth * args.renderScale)));
-  s.height = std::max(1u, uint32_t(std::lround(args.windowHeight * args.renderScale)));
+  float scale = std::clamp(args.renderScale, 0.1f, 1.0f);
+  s.width = std::max(1u, uint32_t(std::lround(args.windowWidth * scale)));
+  s.height = std::max(1u, uint32_t(std::lround(args.windowHeight * scale)));
   return s;
 }
 
@@ -51,7 +53,7 @@ WindowApp::WindowApp(const DemoArgs& args, const CommonOptions& common)
       timer_(*ctx_),
       input_(window_.handle()) {
   clock_.duration = asset_.animationDuration();
-  poseScene();
+  updateScenePose();
   resetCamera();
 }
 
@@ -61,7 +63,7 @@ float WindowApp::renderAspect() const {
   return float(tracer_.settings().width) / float(tracer_.settings().height);
 }
 
-void WindowApp::poseScene() {
+void WindowApp::updateScenePose() {
   gpuScene_.update(currentSceneDraw(asset_, clock_.time, renderAspect()).draw);
 }
 
@@ -91,10 +93,7 @@ void WindowApp::applySettings(VkExtent2D extent) {
   wanted_.width = std::max(1u, uint32_t(std::lround(extent.width * renderScale_)));
   wanted_.height = std::max(1u, uint32_t(std::lround(extent.height * renderScale_)));
   if (tracingDiffers(wanted_, tracer_.settings())) {
-    bool aspectChanged = wanted_.width * tracer_.settings().height !=
-                         wanted_.height * tracer_.settings().width;
-    tracer_.setSettings(wanted_);  // restarts accumulation
-    if (aspectChanged) poseScene();  // lights and instances do not depend on it, cameras do
+    tracer_.setSettings(wanted_);  // restarts accumulation (reallocates on a new size)
   } else if (wanted_.samplesPerFrame != tracer_.settings().samplesPerFrame) {
     tracer_.setSamplesPerFrame(wanted_.samplesPerFrame);  // the image stays valid
   }
@@ -107,8 +106,8 @@ void WindowApp::recordFrame(const ui::PresentTarget& target) {
   tracer_.recordFrame(recorder, gpuScene_, camera_.view());
   ui::DisplaySettings display;
   display.exposure = wanted_.exposure;
-  display.tonemap = wanted_.tonemap == render::Tonemap::Aces ? shared::kTonemapAces
-                                                             : shared::kTonemapClamp;
+  display.tonemap =
+      wanted_.tonemap == render::Tonemap::Aces ? shared::kTonemapAces : shared::kTonemapClamp;
   display.encodeSrgb = !presenter_.swapchain().encodesSrgb();
   display_.record(recorder, tracer_.accumulation(), display);
   recorder.finish();
@@ -140,14 +139,17 @@ int WindowApp::run() {
     float step = float(std::min(dt, 0.25));  // a stall must not fling the camera
 
     imgui_.newFrame();
-    FrameInput input = input_.read(imgui_.wantsMouse(), imgui_.wantsKeyboard(),
-                                   ImGui::GetIO().MouseWheel);
+    FrameInput input =
+        input_.read(imgui_.wantsMouse(), imgui_.wantsKeyboard(), ImGui::GetIO().MouseWheel);
     handleActions(input.actions);
     camera_.update(input.camera, step);
     bool posed = clock_.advance(step);
     if (uiVisible_) {
-      StatsView view{&stats_, tracer_.accumulatedSamples(), tracer_.settings().width,
-                     tracer_.settings().height, ctx_->deviceName(),
+      StatsView view{&stats_,
+                     tracer_.accumulatedSamples(),
+                     tracer_.settings().width,
+                     tracer_.settings().height,
+                     ctx_->deviceName(),
                      ctx_->deviceName().find("llvmpipe") == std::string::npos};
       PanelChanges changes = drawQlightPanel(view, wanted_, renderScale_, clock_, camera_);
       posed |= changes.scenePose;
@@ -155,7 +157,7 @@ int WindowApp::run() {
     }
     applySettings(target->extent);
     if (posed) {
-      poseScene();
+      updateScenePose();
       tracer_.resetAccumulation();  // moving lights and objects invalidate the image
     }
     recordFrame(*target);

@@ -36,9 +36,10 @@ class WindowApp {
   using Clock = std::chrono::steady_clock;
   void collectPreviousFrame(double seconds);
   void handleActions(const WindowActions& actions);
-  // The tracer follows the edited settings and the window size; true if it restarted.
+  // The tracer follows the edited settings and the window size (restarting
+  // accumulation when what it computes changes).
   void applySettings(VkExtent2D windowExtent);
-  void poseScene();
+  void updateScenePose();  // uploads the scene posed at clock_.time
   void recordFrame(const ui::PresentTarget& target);
   void resetCamera();
   float renderAspect() const;

@@ -10,7 +10,7 @@ namespace qlight::game {
 // What the controls ask of the camera this frame.
 struct CameraControls {
   bool forward = false, back = false, left = false, right = false, down = false, up = false;
-  bool fast = false;          // Shift: kFastFactor times the speed
+  bool fast = false;           // Shift: kFastFactor times the speed
   glm::vec2 lookPixels{0.0f};  // mouse motion while dragging (x right, y down)
   float wheel = 0.0f;          // scroll steps: each scales the speed by kWheelStep
 };

@@ -36,9 +36,12 @@ FrameInput InputReader::read(bool uiWantsMouse, bool uiWantsKeyboard, float whee
   glfwGetCursorPos(window_, &x, &y);
   bool button = glfwGetMouseButton(window_, GLFW_MOUSE_BUTTON_LEFT) == GLFW_PRESS ||
                 glfwGetMouseButton(window_, GLFW_MOUSE_BUTTON_RIGHT) == GLFW_PRESS;
-  if (!button) dragging_ = false;
-  else if (!dragging_ && !uiWantsMouse) dragging_ = true;  // a drag starting on the image
-  else if (dragging_) c.lookPixels = {float(x - lastX_), float(y - lastY_)};
+  if (!button)
+    dragging_ = false;
+  else if (!dragging_ && !uiWantsMouse)
+    dragging_ = true;  // a drag starting on the image
+  else if (dragging_)
+    c.lookPixels = {float(x - lastX_), float(y - lastY_)};
   lastX_ = x;
   lastY_ = y;
   return in;

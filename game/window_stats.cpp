@@ -23,8 +23,10 @@ void FrameStats::add(const FrameSample& s) {
     if (!s.gpuMs.count(name)) blend(ms, 0.0, false);
   for (auto& [name, ms] : s.gpuMs) {
     auto it = gpuMs_.find(name);
-    if (it == gpuMs_.end()) gpuMs_[name] = ms;
-    else blend(it->second, ms, false);
+    if (it == gpuMs_.end())
+      gpuMs_[name] = ms;
+    else
+      blend(it->second, ms, false);
   }
   first_ = false;
 }
