@@ -7,7 +7,8 @@
 namespace qlight::game {
 
 PanelChanges drawQlightPanel(const StatsView& stats, render::RenderSettings& settings,
-                             float& renderScale, SceneClock& clock, FreeCamera& camera) {
+                             float& renderScale, SceneClock& clock, FreeCamera& camera,
+                             const std::function<void()>& guidingSection) {
   PanelChanges changes;
   ImGui::SetNextWindowPos(ImVec2(8, 8), ImGuiCond_FirstUseEver);
   float height = std::min(ImGui::GetIO().DisplaySize.y - 16.0f, 640.0f);
@@ -17,6 +18,8 @@ PanelChanges drawQlightPanel(const StatsView& stats, render::RenderSettings& set
     if (ImGui::CollapsingHeader("Stats", ImGuiTreeNodeFlags_DefaultOpen)) drawStatsSection(stats);
     if (ImGui::CollapsingHeader("Render", ImGuiTreeNodeFlags_DefaultOpen))
       changes.renderSettings = drawRenderSection(settings, renderScale);
+    if (guidingSection && ImGui::CollapsingHeader("Guiding", ImGuiTreeNodeFlags_DefaultOpen))
+      guidingSection();
     if (ImGui::CollapsingHeader("Scene", ImGuiTreeNodeFlags_DefaultOpen))
       changes.scenePose = drawSceneSection(clock);
     if (ImGui::CollapsingHeader("Camera")) changes.resetCamera = drawCameraSection(camera);

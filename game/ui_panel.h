@@ -2,6 +2,7 @@
 // sections. Each section edits plain state and reports what changed; the
 // window decides what that means for the renderer.
 #pragma once
+#include <functional>
 #include <string>
 
 #include "engine/render/render_settings.h"
@@ -28,8 +29,10 @@ struct PanelChanges {
 };
 
 // Draws the whole panel; returns what the user changed this frame.
+// `guidingSection` draws the Guiding section (it owns the learned state).
 PanelChanges drawQlightPanel(const StatsView& stats, render::RenderSettings& settings,
-                             float& renderScale, SceneClock& clock, FreeCamera& camera);
+                             float& renderScale, SceneClock& clock, FreeCamera& camera,
+                             const std::function<void()>& guidingSection = {});
 
 void drawStatsSection(const StatsView& view);
 bool drawRenderSection(render::RenderSettings& settings, float& renderScale);

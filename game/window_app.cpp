@@ -12,6 +12,7 @@
 #include "engine/scene/gltf_loader.h"
 #include "engine/ui/swapchain_blit.h"
 #include "game/context_setup.h"
+#include "game/ui_guiding_panel.h"
 #include "game/ui_panel.h"
 #include "game/window_screenshot.h"
 #include "shaders/shared/tonemap.h"
@@ -45,16 +46,28 @@ WindowApp::WindowApp(const DemoArgs& args, const CommonOptions& common)
                          [this](VkInstance instance) { return window_.createSurface(instance); })),
       presenter_(*ctx_, window_),
       imgui_(*ctx_, window_, presenter_),
+      world_(asset_, float(args.windowWidth) / float(std::max(args.windowHeight, 1u))),
       gpuScene_(*ctx_, asset_),
       wanted_(initialSettings(args)),
       renderScale_(std::clamp(args.renderScale, 0.1f, 1.0f)),
       tracer_(*ctx_, wanted_),
       display_(*ctx_),
+      guidingWanted_(args.guiding),
       timer_(*ctx_),
       input_(window_.handle()) {
   clock_.duration = asset_.animationDuration();
   updateScenePose();
   resetCamera();
+  guiding_ = std::make_unique<guiding::QGuiding>(*ctx_, guidingWanted_);
+  guiding_->generatePoints(world_.registry(), gpuScene_);
+}
+
+// New guiding settings apply at once: strata changes reset the tables, the
+// rest takes effect in the next frame. Guiding never biases the image, so
+// accumulation goes on.
+void WindowApp::applyGuiding(bool regenerate) {
+  guiding_->setSettings(guidingWanted_);
+  if (regenerate || guiding_->needsPoints()) guiding_->generatePoints(world_.registry(), gpuScene_);
 }
 
 WindowApp::~WindowApp() { vkDeviceWaitIdle(ctx_->device()); }
@@ -64,11 +77,12 @@ float WindowApp::renderAspect() const {
 }
 
 void WindowApp::updateScenePose() {
-  gpuScene_.update(currentSceneDraw(asset_, clock_.time, renderAspect()).draw);
+  world_.advance(clock_.time);  // animation -> transforms -> extract, by the scheduler
+  gpuScene_.update(world_.draw());
 }
 
 void WindowApp::resetCamera() {
-  render::CameraView start = currentSceneDraw(asset_, 0.0f, renderAspect()).camera;
+  render::CameraView start = world_.camera();
   // Half the scene's radius per second crosses a room in a few seconds.
   camera_.reset(start, 0.5f * std::max(asset_.bounds.radius(), 1e-3f));
 }
@@ -79,6 +93,7 @@ void WindowApp::collectPreviousFrame(double seconds) {
   sample.counters = tracer_.collectCounters();
   sample.gpuMs = timer_.collect(*ctx_);
   stats_.add(sample);
+  guiding_->afterFrame(world_.registry());  // new points where camera paths found none
 }
 
 void WindowApp::handleActions(const WindowActions& a) {
@@ -103,7 +118,8 @@ void WindowApp::recordFrame(const ui::PresentTarget& target) {
   VkCommandBuffer cmd = target.cmd;
   timer_.reset(cmd);
   gpu::PassRecorder recorder(*ctx_, cmd, &timer_);
-  tracer_.recordFrame(recorder, gpuScene_, camera_.view());
+  tracer_.recordFrame(recorder, gpuScene_, camera_.view(), guiding_->binder());
+  guiding_->recordLearning(recorder);
   ui::DisplaySettings display;
   display.exposure = wanted_.exposure;
   display.tonemap =
@@ -151,7 +167,10 @@ int WindowApp::run() {
                      tracer_.settings().height,
                      ctx_->deviceName(),
                      ctx_->deviceName().find("llvmpipe") == std::string::npos};
-      PanelChanges changes = drawQlightPanel(view, wanted_, renderScale_, clock_, camera_);
+      PanelChanges changes = drawQlightPanel(view, wanted_, renderScale_, clock_, camera_, [&] {
+        GuidingPanelResult g = drawGuidingSection(guidingWanted_, guiding_->stats());
+        if (g.changed || g.regenerate) applyGuiding(g.regenerate);
+      });
       posed |= changes.scenePose;
       if (changes.resetCamera) resetCamera();
     }

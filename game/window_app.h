@@ -8,7 +8,9 @@
 #include "engine/gpu/context.h"
 #include "engine/gpu/gpu_timer.h"
 #include "engine/render/gpu_scene.h"
+#include "engine/guiding/q_guiding.h"
 #include "engine/render/path_tracer.h"
+#include "engine/session/scene_world.h"
 #include "engine/scene/scene_asset.h"
 #include "engine/ui/display_pass.h"
 #include "engine/ui/glfw_window.h"
@@ -42,6 +44,7 @@ class WindowApp {
   void updateScenePose();  // uploads the scene posed at clock_.time
   void recordFrame(const ui::PresentTarget& target);
   void resetCamera();
+  void applyGuiding(bool regenerate);
   float renderAspect() const;
 
   DemoArgs args_;
@@ -50,11 +53,14 @@ class WindowApp {
   std::unique_ptr<gpu::Context> ctx_;
   ui::Presenter presenter_;
   ui::ImGuiLayer imgui_;
+  session::SceneWorld world_;  // the scene's entities and the cache points
   render::GpuScene gpuScene_;
   render::RenderSettings wanted_;  // what the panel edits; the tracer follows
   float renderScale_;
   render::PathTracer tracer_;
   ui::DisplayPass display_;
+  guiding::GuidingSettings guidingWanted_;
+  std::unique_ptr<guiding::QGuiding> guiding_;
   gpu::GpuTimer timer_;
   InputReader input_;
   FreeCamera camera_;

@@ -4,11 +4,6 @@
 
 namespace qlight::game {
 
-render::PosedScene currentSceneDraw(const scene::SceneAsset& asset, float timeSeconds,
-                                    float aspect) {
-  return render::poseScene(asset, timeSeconds, aspect);
-}
-
 bool SceneClock::advance(float dt) {
   if (!animated() || !playing || speed == 0.0f || dt <= 0.0f) return false;
   time = std::fmod(time + dt * speed, duration);

@@ -1,15 +1,7 @@
-// What the demo window draws each frame, and the clock that animates it.
+// The clock that animates the demo window's scene.
 #pragma once
-#include "engine/render/scene_extract.h"
-#include "engine/scene/scene_asset.h"
 
 namespace qlight::game {
-
-// The scene posed at `timeSeconds` (animations looping) with its own camera:
-// the one place the window asks for the frame's content, so it can later come
-// from the ECS instead of render::poseScene.
-render::PosedScene currentSceneDraw(const scene::SceneAsset& asset, float timeSeconds,
-                                    float aspect);
 
 // Scene time: advances while playing, loops over the animation duration.
 struct SceneClock {
