@@ -20,7 +20,7 @@
 #include "include/lights.glsl"
 #include "include/guiding.glsl"
 
-layout(local_size_x = 8, local_size_y = 8) in;
+layout(local_size_x = 64) in;
 layout(binding = QL_BIND_FRAME, scalar) readonly buffer Frame { FrameUniforms frame; };
 layout(binding = QL_BIND_ACCUM, rgba32f) uniform image2D uAccum;
 layout(binding = QL_BIND_STATS) buffer Stats { uint stats[]; };
@@ -55,8 +55,8 @@ uint chooseLight(uint point, float u, out float selectPdf) {
 }
 
 void main() {
-  uvec2 pixel = gl_GlobalInvocationID.xy;
-  bool inside = all(lessThan(pixel, frame.resolution));
+  uvec2 pixel = uvec2(gl_GlobalInvocationID.x % frame.resolution.x, gl_GlobalInvocationID.x / frame.resolution.x);
+  bool inside = gl_GlobalInvocationID.x < frame.resolution.x * frame.resolution.y;
   uint rays = 0u, shadowRays = 0u, vertices = 0u, emitterHit = 0u, invalid = 0u, covered = 0u;
   vec3 radiance = vec3(0.0);
 

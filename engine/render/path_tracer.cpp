@@ -98,7 +98,7 @@ void PathTracer::recordFrame(gpu::PassRecorder& rec, const GpuScene& scene,
         .write(QL_BIND_ACCUM, *accum_)
         .write(QL_BIND_STATS, stats_)
         .push(shared::TracePush{s, 0, 0, 0})
-        .dispatchThreads(settings_.width, settings_.height);
+        .dispatchThreads(settings_.width * settings_.height);
   }
   sampleCounter_ += settings_.samplesPerFrame;
   accumulated_ += settings_.samplesPerFrame;

@@ -3,7 +3,7 @@
 // Q-learning targets it accumulates for the update pass (D&K eq. 5).
 #extension GL_EXT_shader_atomic_float : require
 
-layout(binding = QL_BIND_GUIDING, scalar) readonly buffer Guiding { GuidingUniforms guiding; };
+layout(binding = QL_BIND_GUIDING, scalar) uniform Guiding { GuidingUniforms guiding; };
 layout(binding = QL_BIND_CACHE_POINTS, scalar) readonly buffer CachePoints { GpuCachePoint cachePoints[]; };
 layout(binding = QL_BIND_GRID_BUCKETS, scalar) readonly buffer GridBuckets { uint gridBuckets[]; };
 layout(binding = QL_BIND_GRID_POINTS, scalar) readonly buffer GridPoints { uint gridPoints[]; };
