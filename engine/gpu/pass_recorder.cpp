@@ -34,6 +34,10 @@ PassBuilder& PassBuilder::read(uint32_t binding, const BufferView& view) {
   uses_.push_back({binding, Access::Read, nullptr, &view});
   return *this;
 }
+PassBuilder& PassBuilder::write(uint32_t binding, const BufferView& view) {
+  uses_.push_back({binding, Access::Write, nullptr, &view});
+  return *this;
+}
 PassBuilder& PassBuilder::read(uint32_t binding, const Image& image) {
   uses_.push_back({binding, Access::Read, nullptr, nullptr, &image});
   return *this;

@@ -34,6 +34,7 @@ class PassBuilder {
   PassBuilder& read(uint32_t binding, const Buffer& buffer);
   PassBuilder& write(uint32_t binding, const Buffer& buffer);  // read-write
   PassBuilder& read(uint32_t binding, const BufferView& view);
+  PassBuilder& write(uint32_t binding, const BufferView& view);  // storage texel buffer
   PassBuilder& read(uint32_t binding, const Image& image);
   PassBuilder& write(uint32_t binding, const Image& image);  // read-write
   template <class T>

@@ -28,7 +28,7 @@ class GpuScene {
   // buffers, so no recorded frame that uses them may still be in flight.
   void update(const SceneDraw& draw);
 
-  // Binds every scene buffer of path_trace.comp-style shaders.
+  // Binds every scene buffer of the path tracing passes (shaders/pt_*.comp).
   void bind(gpu::PassBuilder& pass) const;
 
   uint32_t lightCount() const { return lightCount_; }

@@ -1,5 +1,5 @@
 // Minimal guiding buffers (no cache points, everything off) for frames rendered
-// without Q-learned guiding: path_trace.comp binds the guiding slots always.
+// without Q-learned guiding: the path tracing passes bind the guiding slots always.
 #pragma once
 #include <functional>
 #include <memory>

@@ -22,10 +22,16 @@ FrameCounters& FrameCounters::operator+=(const FrameCounters& o) {
 
 PathTracer::PathTracer(const gpu::Context& ctx, const RenderSettings& settings)
     : ctx_(ctx),
-      trace_(ctx, "path_trace"),
+      begin_(ctx, "pt_begin"),
+      trace_(ctx, "pt_trace"),
+      shade_(ctx, "pt_shade"),
+      end_(ctx, "pt_end"),
+      queue_(ctx, "pt_queue"),
       noGuiding_(ctx),
       frameUniforms_(ctx, sizeof(FrameUniforms), "frame.uniforms", 0, gpu::MemoryUse::HostVisible),
-      stats_(ctx, shared::kStatCount * sizeof(uint32_t), "frame.stats") {
+      stats_(ctx, shared::kStatCount * sizeof(uint32_t), "frame.stats"),
+      queueState_(ctx, 2 * sizeof(shared::QueueState), "path.queues",
+                  VK_BUFFER_USAGE_INDIRECT_BUFFER_BIT) {
   setSettings(settings);
 }
 
@@ -39,9 +45,18 @@ void PathTracer::setSettings(const RenderSettings& s) {
     throw std::invalid_argument("exposure must be a positive finite number");
   bool resize = !accum_ || accum_->width() != s.width || accum_->height() != s.height;
   settings_ = s;
-  if (resize)
+  if (resize) {
     accum_ = std::make_unique<gpu::Image>(ctx_, s.width, s.height, VK_FORMAT_R32G32B32A32_SFLOAT,
                                           "accumulation");
+    uint64_t texels = uint64_t(s.width) * s.height * shared::kPathStateTexels;
+    pathsView_.reset();
+    paths_ = std::make_unique<gpu::Buffer>(ctx_, texels * 16, "path.state",
+                                           VK_BUFFER_USAGE_STORAGE_TEXEL_BUFFER_BIT);
+    pathsView_ = std::make_unique<gpu::BufferView>(ctx_, *paths_, VK_FORMAT_R32G32B32A32_UINT);
+    for (int q = 0; q < 2; ++q)
+      queueIds_[q] = std::make_unique<gpu::Buffer>(ctx_, uint64_t(s.width) * s.height * 4,
+                                                   "path.queue" + std::to_string(q));
+  }
   resetAccumulation();
 }
 
@@ -90,15 +105,47 @@ void PathTracer::recordFrame(gpu::PassRecorder& rec, const GpuScene& scene,
   u.sceneRadius = scene.boundsRadius();
   frameUniforms_.upload(ctx_, &u, sizeof(u));
 
+  const uint32_t pathCount = settings_.width * settings_.height;
+  // Every path pass binds the scene, the guiding tables, the frame and the path state.
+  auto pass = [&](const char* name, const gpu::ComputePipeline& pipeline, uint32_t sample,
+                  uint32_t bounce, uint32_t extend) {
+    auto p = rec.pass(name, pipeline);
+    scene.bind(p);
+    if (guiding) guiding(p); else noGuiding_.bind(p);
+    p.read(QL_BIND_FRAME, frameUniforms_)
+        .write(QL_BIND_PATH_STATE, *pathsView_)
+        .push(shared::TracePush{sample, bounce, extend, pathCount});
+    return p;
+  };
+  // pt_queue makes queue (bounce & 1) current: its dispatch size, and the other one emptied.
+  auto switchQueues = [&](uint32_t sample, uint32_t bounce, bool start) {
+    rec.pass("path.queue", queue_)
+        .write(QL_BIND_QUEUE_STATE, queueState_)
+        .push(shared::TracePush{sample, bounce, start ? 1u : 0u, pathCount})
+        .dispatch(1);
+  };
+  auto queued = [&](gpu::PassBuilder p, uint32_t bounce) {
+    p.read(QL_BIND_QUEUE_IN, *queueIds_[bounce & 1])
+        .write(QL_BIND_QUEUE_STATE, queueState_)
+        .dispatchIndirect(queueState_, (bounce & 1) * sizeof(shared::QueueState) + 4);
+  };
+  // Wavefront: begin, then per bounce trace (shadow + extension rays) and
+  // shade over the live paths only, a last trace for the final shadow rays, end.
   for (uint32_t s = 0; s < settings_.samplesPerFrame; ++s) {
-    auto pass = rec.pass("path_trace", trace_);
-    scene.bind(pass);
-    if (guiding) guiding(pass); else noGuiding_.bind(pass);
-    pass.read(QL_BIND_FRAME, frameUniforms_)
+    pass("path.begin", begin_, s, 0, 0).write(QL_BIND_QUEUE_OUT, *queueIds_[0]).dispatchThreads(pathCount);
+    switchQueues(s, 0, true);
+    for (uint32_t bounce = 0; bounce <= settings_.maxDepth; ++bounce) {
+      if (bounce > 0) switchQueues(s, bounce, false);
+      queued(pass("path.trace", trace_, s, bounce, 1), bounce);
+      queued(pass("path.shade", shade_, s, bounce, 0).write(QL_BIND_QUEUE_OUT, *queueIds_[(bounce + 1) & 1]), bounce);
+    }
+    uint32_t last = settings_.maxDepth + 1;
+    switchQueues(s, last, false);
+    queued(pass("path.trace", trace_, s, last, 0), last);  // the last shadow rays
+    pass("path.end", end_, s, 0, 0)
         .write(QL_BIND_ACCUM, *accum_)
         .write(QL_BIND_STATS, stats_)
-        .push(shared::TracePush{s, 0, 0, 0})
-        .dispatchThreads(settings_.width * settings_.height);
+        .dispatchThreads(pathCount);
   }
   sampleCounter_ += settings_.samplesPerFrame;
   accumulated_ += settings_.samplesPerFrame;

@@ -50,8 +50,13 @@ class PathTracer {
  private:
   const gpu::Context& ctx_;
   RenderSettings settings_;
-  gpu::ComputePipeline trace_;
+  // The wavefront passes (shaders/pt_*.comp) and the path state between them.
+  gpu::ComputePipeline begin_, trace_, shade_, end_, queue_;
   NullGuiding noGuiding_;
+  std::unique_ptr<gpu::Buffer> paths_;
+  std::unique_ptr<gpu::BufferView> pathsView_;
+  std::unique_ptr<gpu::Buffer> queueIds_[2];
+  gpu::Buffer queueState_;  // shared::QueueState[2]: counts and indirect dispatch sizes
   std::unique_ptr<gpu::Image> accum_;
   gpu::Buffer frameUniforms_;
   gpu::Buffer stats_;

@@ -1,5 +1,5 @@
 // The scene and frame as the path tracer sees them: GPU structs shared by GLSL
-// (scalar block layout) and C++, and the binding numbers of path_trace.comp.
+// (scalar block layout) and C++, and the binding numbers of the path tracing passes.
 #ifndef QLIGHT_SHARED_SCENE_TYPES_H
 #define QLIGHT_SHARED_SCENE_TYPES_H
 #include "common.h"
@@ -145,11 +145,34 @@ QL_CONST uint kStatCount = 8u;
 #define QL_BIND_ACCUM 12
 #define QL_BIND_STATS 13
 
+// The path tracer runs as a wavefront: begin (camera rays), then per bounce
+// trace (pending shadow ray + extension ray) and shade, a last trace for the
+// final shadow rays, and end (accumulate). Path state lives between passes in
+// a storage texel buffer (whole-texel loads and stores vectorize on lavapipe).
 struct TracePush {
   uint sampleIndex;  // which of the frame's samples this dispatch takes
-  uint pad0, pad1, pad2;
+  uint bounce;       // path depth of the pass (every live path is at the same depth)
+  uint extend;       // trace: 1 = also trace the extension ray
+  uint pathCount;
 };
 QL_CHECK_SIZE(TracePush, 16);
+
+QL_CONST uint kPathStateTexels = 10u;
+#define QL_BIND_PATH_STATE 26
+// Work queues: trace and shade visit only the paths in the current queue (ids
+// of live paths, or of dead ones with a shadow ray left); shade appends the
+// survivors to the next queue; pt_queue turns its count into dispatch sizes.
+#define QL_BIND_QUEUE_IN 27
+#define QL_BIND_QUEUE_OUT 28
+#define QL_BIND_QUEUE_STATE 29
+
+// Per queue: its count and the indirect dispatch that covers it.
+struct QueueState {
+  uint count;
+  uint groupsX, groupsY, groupsZ;
+};
+QL_CHECK_SIZE(QueueState, 16);
+QL_CONST uint kPathGroupSize = 64u;
 
 QL_END
 

@@ -37,7 +37,8 @@ TEST(RenderCli, WritesImageAndStatsWithEveryField) {
   EXPECT_GE(j["emitter_hit_share"].get<double>(), 0.0);
   EXPECT_LE(j["emitter_hit_share"].get<double>(), 1.0);
   EXPECT_GT(j["mean_path_length"].get<double>(), 0.5);  // the box is closed: every path bounces
-  EXPECT_TRUE(j["gpu_ms"].contains("path_trace"));
+  EXPECT_TRUE(j["gpu_ms"].contains("path.trace"));
+  EXPECT_TRUE(j["gpu_ms"].contains("path.shade"));
   EXPECT_EQ(j["invalid_samples"], 0);
 }
 

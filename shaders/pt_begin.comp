@@ -1,0 +1,39 @@
+#version 460
+// Wavefront pass 1: one camera ray per pixel (jittered), fresh path state.
+#extension GL_GOOGLE_include_directive : require
+#include "include/path_common.glsl"
+layout(binding = QL_BIND_QUEUE_OUT, scalar) writeonly buffer QueueOut { uint queueOut[]; };
+
+void main() {
+  uint path = gl_GlobalInvocationID.x;
+  if (path >= pc.pathCount) return;
+  uvec2 pixel = uvec2(path % frame.resolution.x, path / frame.resolution.x);
+  Rng rng = rngSeed(path, frame.frameIndex + pc.sampleIndex, frame.seed);
+  vec2 ndc = (vec2(pixel) + rngNext2(rng)) / vec2(frame.resolution) * 2.0 - 1.0;
+  GpuCamera cam = frame.camera;
+  PathState s;
+  s.origin = cam.position;
+  s.dir = normalize(cam.forward + ndc.x * cam.tanHalfFovY * cam.aspect * cam.right -
+                    ndc.y * cam.tanHalfFovY * cam.up);
+  s.pixel = path;
+  s.rng = rng.state;
+  s.throughput = vec3(1.0);
+  s.prevScatterPdf = 0.0;
+  s.radiance = vec3(0.0);
+  s.flags = kPathAlive;
+  s.shadowOrigin = vec3(0.0);
+  s.shadowTMax = 0.0;
+  s.shadowDir = vec3(0.0, 0.0, 1.0);
+  s.prevPoint = kNoCachePoint;
+  s.shadowContribution = vec3(0.0);
+  s.prevEntry = kNoCachePoint;
+  s.hitT = -1.0;
+  s.hitU = s.hitV = 0.0;
+  s.hitInstance = s.hitPrimitive = 0u;
+  s.shadowTarget = 0.0;
+  s.shadowPoint = kNoCachePoint;
+  s.shadowLight = 0u;
+  s.vertices = s.covered = s.rays = s.shadowRays = 0u;
+  storePath(path, s);
+  queueOut[path] = path;  // every path starts in queue 0 (its count is set by pt_queue)
+}

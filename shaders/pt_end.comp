@@ -1,0 +1,40 @@
+#version 460
+// Wavefront pass 4: adds each path's radiance to the accumulation image
+// (rgb: sum, a: sample count) and its counters to the frame's stats.
+#extension GL_GOOGLE_include_directive : require
+#include "include/path_common.glsl"
+
+layout(binding = QL_BIND_ACCUM, rgba32f) uniform image2D uAccum;
+layout(binding = QL_BIND_STATS) buffer Stats { uint stats[]; };
+
+void addStat(uint index, uint value) {
+  uint total = subgroupAdd(value);
+  if (subgroupElect() && total > 0u) atomicAdd(stats[index], total);
+}
+
+void main() {
+  uint path = gl_GlobalInvocationID.x;
+  bool inside = path < pc.pathCount;
+  uint flags = 0u;
+  uvec4 counters = uvec4(0u);
+  uint invalid = 0u;
+  if (inside) {
+    vec4 t3 = pathTexel(path, 3u);
+    flags = floatBitsToUint(t3.w);
+    counters = floatBitsToUint(pathTexel(path, 9u));
+    vec3 radiance = t3.xyz;
+    if (any(isnan(radiance)) || any(isinf(radiance))) {
+      radiance = vec3(0.0);
+      invalid = 1u;
+    }
+    ivec2 pixel = ivec2(path % frame.resolution.x, path / frame.resolution.x);
+    imageStore(uAccum, pixel, imageLoad(uAccum, pixel) + vec4(radiance, 1.0));
+  }
+  addStat(kStatRays, counters.z);
+  addStat(kStatShadowRays, counters.w);
+  addStat(kStatPaths, inside ? 1u : 0u);
+  addStat(kStatEmitterHits, (flags & kPathEmitterHit) != 0u ? 1u : 0u);
+  addStat(kStatPathVertices, counters.x);
+  addStat(kStatInvalidSamples, invalid);
+  addStat(kStatCoveredVertices, counters.y);
+}
