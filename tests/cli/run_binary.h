@@ -1,30 +1,16 @@
 // Runs the built qlight binary with arguments; captures exit code and output.
 #pragma once
-#include <sys/wait.h>
+#include <unistd.h>
 
-#include <array>
-#include <cstdio>
 #include <filesystem>
 #include <string>
 
+#include "tests/support/run_command.h"
+
 namespace qlight::test {
 
-struct RunResult {
-  int exitCode = -1;
-  std::string output;  // stdout and stderr together
-};
-
 inline RunResult runQlight(const std::string& args) {
-  std::string cmd = std::string("QLIGHT_VALIDATION=1 ") + QLIGHT_BINARY + " " + args + " 2>&1";
-  RunResult r;
-  FILE* pipe = popen(cmd.c_str(), "r");
-  if (!pipe) return r;
-  std::array<char, 4096> buf;
-  size_t n;
-  while ((n = fread(buf.data(), 1, buf.size(), pipe)) > 0) r.output.append(buf.data(), n);
-  int status = pclose(pipe);
-  r.exitCode = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
-  return r;
+  return runCommand(std::string("QLIGHT_VALIDATION=1 ") + QLIGHT_BINARY + " " + args);
 }
 
 inline std::filesystem::path tempDir(const std::string& name) {

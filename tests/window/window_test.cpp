@@ -14,6 +14,7 @@
 #include <stb/stb_image.h>
 
 #include "game/demo_window.h"
+#include "tests/support/run_command.h"
 #include "tests/window/xvfb_server.h"
 
 namespace qlight::test {
@@ -21,22 +22,6 @@ namespace {
 
 namespace fs = std::filesystem;
 
-struct ShellResult {
-  int exitCode = -1;
-  std::string output;
-};
-
-ShellResult runShell(const std::string& command) {
-  ShellResult r;
-  FILE* pipe = popen((command + " 2>&1").c_str(), "r");
-  if (!pipe) return r;
-  std::array<char, 4096> buf;
-  size_t n;
-  while ((n = fread(buf.data(), 1, buf.size(), pipe)) > 0) r.output.append(buf.data(), n);
-  int status = pclose(pipe);
-  r.exitCode = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
-  return r;
-}
 
 TEST(WindowDemo, PresentsFramesWithoutValidationMessagesAndWritesScreenshot) {
   if (!std::getenv("DISPLAY") && !XvfbServer::installed())
@@ -56,7 +41,7 @@ TEST(WindowDemo, PresentsFramesWithoutValidationMessagesAndWritesScreenshot) {
       " timeout 600 " + QLIGHT_BINARY + " demo --scene " + QLIGHT_SOURCE_DIR +
       "/assets/cornell_box.gltf" + " --exit-after-frames 30 --screenshot-at-exit " + shot.string() +
       " --out " + (dir / "out").string();
-  ShellResult run = runShell(command);
+  RunResult run = runCommand(command);
   ASSERT_EQ(run.exitCode, 0) << command << "\n" << run.output;
   EXPECT_EQ(run.output.find("headless"), std::string::npos)
       << "the demo fell back to headless instead of opening a window:\n"
