@@ -7,5 +7,5 @@ out=docs/images
 mkdir -p "$out"
 spp=${SPP:-512}
 ./build/qlight render --scene assets/cornell_box.gltf --out "$out/cornell_box.png" --spp "$spp" --batch 16 --stats-json "$out/cornell_box.json"
-./build/qlight render --scene assets/door_ajar.gltf --out "$out/door_ajar.png" --spp "$spp" --batch 16 --exposure 4 --stats-json "$out/door_ajar.json"
+./build/qlight render --scene assets/door_ajar.gltf --out "$out/door_ajar.png" --spp "$spp" --batch 16 --stats-json "$out/door_ajar.json"
 convert "$out/cornell_box.png" "$out/door_ajar.png" +append "$out/renders.png"
