@@ -43,14 +43,14 @@ void main() {
   bool mis = (frame.flags & kFlagMis) != 0u && nee && emitterHits;
   bool learn = (guiding.flags & kGuideLearn) != 0u;
   bool guide = (guiding.flags & kGuideSample) != 0u;
-  bool usePoints = guiding.pointCount > 0u && (learn || guide || (guiding.flags & kGuideLightLearn) != 0u);
+  bool usePoints = kUseGuiding && (learn || guide || (guiding.flags & (kGuideLightLearn | kGuideSpawn)) != 0u);
   bool alive = false;  // set when the path scatters on
 
   if (st.hitT < 0.0) {
     // Only the sky fallback light lives at infinity; it is the last light.
     float skyLuminance = 0.0;
     uint last = frame.lightCount - 1u;
-    if (frame.lightCount > 0u && lights[last].type == kLightSky) {
+    if (kUseNonTriangleLights && frame.lightCount > 0u && lights[last].type == kLightSky) {
       float w = 1.0;
       if (depth > 0u) {
         if (!emitterHits) w = 0.0;
@@ -60,7 +60,7 @@ void main() {
       st.radiance += st.throughput * lights[last].emission * w;
       skyLuminance = luminance(lights[last].emission);
     }
-    if (learn) recordQTarget(st.prevEntry, skyLuminance);
+    if (kUseGuiding && learn) recordQTarget(st.prevEntry, skyLuminance);
   } else {
     BvhHit hit;
     hit.t = st.hitT;
@@ -97,14 +97,14 @@ void main() {
       if (depth < frame.maxDepth) st.covered++;
       if (learn && st.prevEntry != kNoCachePoint)
         recordQTarget(st.prevEntry, luminance(le) + scatteredEstimate(point, bsdf, wo, -dir, ns));
-    } else if (depth == 0u && (guiding.flags & kGuideSpawn) != 0u && rngNextFloat(rng) < 0.125) {
+    } else if (usePoints && depth == 0u && (guiding.flags & kGuideSpawn) != 0u && rngNextFloat(rng) < 0.125) {
       reportUncovered(s.position, s.geometricNormal);
     }
 
     if (depth < frame.maxDepth) {
       if ((st.flags & kPathEmitterHit) == 0u) st.vertices++;  // up to the first emitter reached (D&K)
       TangentFrame pf = point != kNoCachePoint ? pointFrame(point) : tf;
-      float guideShare = guide && point != kNoCachePoint
+      float guideShare = kUseGuiding && guide && point != kNoCachePoint
           ? guiding.selectProbability * (1.0 - bsdfSpecularProbability(bsdf, wo)) : 0.0;
       vec3 p = offsetRayOrigin(s.position, s.geometricNormal);
 

@@ -260,6 +260,14 @@ void QGuiding::bind(gpu::PassBuilder& pass) const {
       .write(QL_BIND_V_COUNT, *t_->v.counts);
 }
 
+render::GuidingBinder QGuiding::binder() const {
+  render::GuidingBinder b;
+  b.bind = [this](gpu::PassBuilder& pass) { bind(pass); };
+  b.points = settings_.enabled;  // also when no point exists yet: camera paths spawn them
+  b.lightLearning = pointCount_ > 0 && lightCount_ > 0 && settings_.enabled;
+  return b;
+}
+
 void QGuiding::recordLearning(gpu::PassRecorder& rec) {
   if (pointCount_ == 0) return;
   auto updateTable = [&](const char* name, const Table& table, uint32_t segment, bool cosine) {

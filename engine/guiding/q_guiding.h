@@ -39,9 +39,7 @@ class QGuiding {
   void generatePoints(ecs::Registry& registry, const render::GpuScene& scene);
 
   void bind(gpu::PassBuilder& pass) const;
-  render::GuidingBinder binder() const {
-    return [this](gpu::PassBuilder& pass) { bind(pass); };
-  }
+  render::GuidingBinder binder() const;
   // After the frame's path tracing: apply the Q (and V) updates, then the CDFs.
   void recordLearning(gpu::PassRecorder& recorder);
   // After the frame finished on the GPU: adds points where camera paths found none.

@@ -1,5 +1,6 @@
 #include "engine/render/gpu_scene.h"
 
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <cstring>
@@ -83,7 +84,10 @@ void GpuScene::uploadStatic() {
   }
   triangleCount_ = uint32_t(triangles_.size());
   std::vector<GpuMaterial> materials;
-  for (auto& m : asset_.materials) materials.push_back(toGpu(m));
+  for (auto& m : asset_.materials) {
+    materials.push_back(toGpu(m));
+    hasTextures_ |= m.baseColorTexture >= 0 || m.metallicRoughnessTexture >= 0 || m.emissiveTexture >= 0;
+  }
   if (materials.empty()) materials.push_back(toGpu(scene::MaterialAsset{}));
 
   std::vector<GpuTexture> textures;
@@ -166,6 +170,9 @@ void GpuScene::uploadLights(const SceneDraw& draw) {
     lights_.push_back(sky);
   }
   lightCount_ = uint32_t(lights_.size());
+  hasNonTriangleLights_ = std::any_of(lights_.begin(), lights_.end(), [](const GpuLight& l) {
+    return l.type != shared::kLightTriangle;
+  });
   std::vector<float> cdf;
   float running = 0.0f;
   for (const GpuLight& l : lights_) cdf.push_back(running += l.power);

@@ -34,7 +34,10 @@ class GpuScene {
   uint32_t lightCount() const { return lightCount_; }
   bool usesFallbackSky() const { return fallbackSky_; }
   uint32_t triangleCount() const { return triangleCount_; }
-  float surfaceArea() const { return surfaceArea_; }  // world space, of the last update
+  float surfaceArea() const { return surfaceArea_; }
+  // Features the path tracing passes are specialized on.
+  bool hasTextures() const { return hasTextures_; }
+  bool hasNonTriangleLights() const { return hasNonTriangleLights_; }  // world space, of the last update
   const glm::vec3& boundsCenter() const { return center_; }
   float boundsRadius() const { return radius_; }
   const std::vector<shared::GpuLight>& lights() const { return lights_; }
@@ -57,6 +60,8 @@ class GpuScene {
   glm::vec3 center_{0.0f};
   float radius_ = 1.0f;
   float surfaceArea_ = 0.0f;
+  bool hasTextures_ = false;
+  bool hasNonTriangleLights_ = false;
 
   std::unique_ptr<gpu::Buffer> vertices_, triangleBuffer_, materials_, textures_, texels_;
   std::unique_ptr<gpu::BufferView> texelView_;

@@ -8,8 +8,15 @@
 
 namespace qlight::render {
 
-// Binds QL_BIND_GUIDING .. QL_BIND_V_COUNT of a path tracing pass.
-using GuidingBinder = std::function<void(gpu::PassBuilder&)>;
+// Binds QL_BIND_GUIDING .. QL_BIND_V_COUNT of a path tracing pass, and says
+// which guiding features the frame uses (the passes are specialized on them:
+// on lavapipe both sides of every branch run, so unused code must not exist).
+struct GuidingBinder {
+  std::function<void(gpu::PassBuilder&)> bind;
+  bool points = false;         // cache points are searched (guided sampling or learning)
+  bool lightLearning = false;  // learned light selection
+  explicit operator bool() const { return bool(bind); }
+};
 
 class NullGuiding {
  public:

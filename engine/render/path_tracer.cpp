@@ -24,7 +24,6 @@ PathTracer::PathTracer(const gpu::Context& ctx, const RenderSettings& settings)
     : ctx_(ctx),
       begin_(ctx, "pt_begin"),
       trace_(ctx, "pt_trace"),
-      shade_(ctx, "pt_shade"),
       end_(ctx, "pt_end"),
       queue_(ctx, "pt_queue"),
       noGuiding_(ctx),
@@ -65,6 +64,17 @@ void PathTracer::resetAccumulation() {
   accumulated_ = 0;
   // sampleCounter_ keeps running: restarted accumulations (a moving camera)
   // must not repeat the previous frame's noise pattern.
+}
+
+const gpu::ComputePipeline& PathTracer::shadeVariant(const GpuScene& scene,
+                                                     const GuidingBinder& guiding) {
+  // Specialization constants 3..6 of shaders/include/features.glsl.
+  std::vector<uint32_t> features = {0, 0, 0, scene.hasTextures(), guiding && guiding.points,
+                                    guiding && guiding.lightLearning, scene.hasNonTriangleLights()};
+  uint32_t key = features[3] | features[4] << 1 | features[5] << 2 | features[6] << 3;
+  auto& slot = shadeVariants_[key];
+  if (!slot) slot = std::make_unique<gpu::ComputePipeline>(ctx_, "pt_shade", features);
+  return *slot;
 }
 
 void PathTracer::recordFrame(gpu::PassRecorder& rec, const GpuScene& scene,
@@ -111,7 +121,7 @@ void PathTracer::recordFrame(gpu::PassRecorder& rec, const GpuScene& scene,
                   uint32_t bounce, uint32_t extend) {
     auto p = rec.pass(name, pipeline);
     scene.bind(p);
-    if (guiding) guiding(p); else noGuiding_.bind(p);
+    if (guiding) guiding.bind(p); else noGuiding_.bind(p);
     p.read(QL_BIND_FRAME, frameUniforms_)
         .write(QL_BIND_PATH_STATE, *pathsView_)
         .push(shared::TracePush{sample, bounce, extend, pathCount});
@@ -129,6 +139,7 @@ void PathTracer::recordFrame(gpu::PassRecorder& rec, const GpuScene& scene,
         .write(QL_BIND_QUEUE_STATE, queueState_)
         .dispatchIndirect(queueState_, (bounce & 1) * sizeof(shared::QueueState) + 4);
   };
+  const gpu::ComputePipeline& shade = shadeVariant(scene, guiding);
   // Wavefront: begin, then per bounce trace (shadow + extension rays) and
   // shade over the live paths only, a last trace for the final shadow rays, end.
   for (uint32_t s = 0; s < settings_.samplesPerFrame; ++s) {
@@ -137,7 +148,7 @@ void PathTracer::recordFrame(gpu::PassRecorder& rec, const GpuScene& scene,
     for (uint32_t bounce = 0; bounce <= settings_.maxDepth; ++bounce) {
       if (bounce > 0) switchQueues(s, bounce, false);
       queued(pass("path.trace", trace_, s, bounce, 1), bounce);
-      queued(pass("path.shade", shade_, s, bounce, 0).write(QL_BIND_QUEUE_OUT, *queueIds_[(bounce + 1) & 1]), bounce);
+      queued(pass("path.shade", shade, s, bounce, 0).write(QL_BIND_QUEUE_OUT, *queueIds_[(bounce + 1) & 1]), bounce);
     }
     uint32_t last = settings_.maxDepth + 1;
     switchQueues(s, last, false);

@@ -51,7 +51,10 @@ class PathTracer {
   const gpu::Context& ctx_;
   RenderSettings settings_;
   // The wavefront passes (shaders/pt_*.comp) and the path state between them.
-  gpu::ComputePipeline begin_, trace_, shade_, end_, queue_;
+  gpu::ComputePipeline begin_, trace_, end_, queue_;
+  // pt_shade specialized per feature set (textures, guiding, light learning, non-triangle lights).
+  const gpu::ComputePipeline& shadeVariant(const GpuScene& scene, const GuidingBinder& guiding);
+  std::map<uint32_t, std::unique_ptr<gpu::ComputePipeline>> shadeVariants_;
   NullGuiding noGuiding_;
   std::unique_ptr<gpu::Buffer> paths_;
   std::unique_ptr<gpu::BufferView> pathsView_;

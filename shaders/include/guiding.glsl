@@ -87,7 +87,8 @@ void reportUncovered(vec3 p, vec3 n) {
 // --- learned light selection, D&K section 4: V(point, light) ---
 
 bool lightLearningOn(uint point) {
-  return (guiding.flags & kGuideLightLearn) != 0u && point != kNoCachePoint && guiding.lightCount > 0u;
+  return kUseLightLearning && (guiding.flags & kGuideLightLearn) != 0u && point != kNoCachePoint &&
+         guiding.lightCount > 0u;
 }
 
 float learnedLightProbability(uint point, uint light) {

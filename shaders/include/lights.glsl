@@ -73,7 +73,7 @@ LightSample sampleLight(vec3 x, vec2 u, uint index, float selectPdf) {
     if (cosLight <= 0.0 && (l.flags & kLightDoubleSided) == 0u) return s;
     s.radiance = triangleLightRadiance(l, bary.yz);
     s.pdf = triangleLightPdf(l, selectPdf, s.direction, dist);
-  } else if (l.type == kLightPoint || l.type == kLightSpot) {
+  } else if (kUseNonTriangleLights && (l.type == kLightPoint || l.type == kLightSpot)) {
     vec3 d = l.position - x;
     float dist2 = dot(d, d);
     if (!(dist2 > 0.0)) return s;
@@ -94,12 +94,12 @@ LightSample sampleLight(vec3 x, vec2 u, uint index, float selectPdf) {
     s.radiance = l.emission * attenuation;
     s.pdf = selectPdf;
     s.delta = true;
-  } else if (l.type == kLightDirectional) {
+  } else if (kUseNonTriangleLights && l.type == kLightDirectional) {
     s.direction = -l.edge1;
     s.radiance = l.emission;
     s.pdf = selectPdf;
     s.delta = true;
-  } else {  // sky
+  } else if (kUseNonTriangleLights) {  // sky
     s.direction = sampleUniformSphere(u);
     s.radiance = l.emission;
     s.pdf = skyLightPdf(selectPdf);

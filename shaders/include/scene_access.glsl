@@ -1,5 +1,6 @@
 // Scene buffers of the path tracer and the hit -> surface resolution.
-// Included by path_trace.comp (and later guiding passes) after the shared headers.
+// Included by the path tracing and guiding passes after the shared headers.
+#include "include/features.glsl"
 
 layout(binding = QL_BIND_BVH_NODES) uniform samplerBuffer uBvhNodes;
 layout(binding = QL_BIND_BVH_TRIS) uniform samplerBuffer uBvhTris;
@@ -41,7 +42,7 @@ vec4 texel(GpuTexture t, int x, int y) {
 
 // Bilinear (or nearest) lookup without mipmaps; linear values.
 vec4 sampleTexture(int index, vec2 uv) {
-  if (index < 0) return vec4(1.0);
+  if (!kUseTextures || index < 0) return vec4(1.0);
   GpuTexture t = textures[index];
   vec2 p = uv * vec2(t.width, t.height) - 0.5;
   if ((t.flags & kTextureNearest) != 0u) return texel(t, int(floor(p.x + 0.5)), int(floor(p.y + 0.5)));
