@@ -28,20 +28,27 @@ uint32_t floatBits(float f) {
 
 using BufferPtr = std::unique_ptr<gpu::Buffer>;
 
+constexpr VkBufferUsageFlags kTexel = VK_BUFFER_USAGE_UNIFORM_TEXEL_BUFFER_BIT;
+
 BufferPtr makeBuffer(const gpu::Context& ctx, uint64_t bytes, const std::string& name,
-                     gpu::MemoryUse use = gpu::MemoryUse::DeviceLocal) {
-  return std::make_unique<gpu::Buffer>(ctx, std::max<uint64_t>(bytes, 16), name, 0, use);
+                     gpu::MemoryUse use = gpu::MemoryUse::DeviceLocal, VkBufferUsageFlags usage = kTexel) {
+  return std::make_unique<gpu::Buffer>(ctx, std::max<uint64_t>(bytes, 16), name, usage, use);
 }
+
+using ViewPtr = std::unique_ptr<gpu::BufferView>;
 
 // One learned table (Q over strata, or V over lights) and its frame accumulators.
 struct Table {
   BufferPtr values, visits, cdf, sums, counts;
+  ViewPtr cdfView;  // the path passes read the CDF as a texel buffer
   void allocate(const gpu::Context& ctx, uint64_t entries, const std::string& name) {
+    cdfView.reset();
     values = makeBuffer(ctx, entries * 4, name + ".values");
     visits = makeBuffer(ctx, entries * 4, name + ".visits");
     cdf = makeBuffer(ctx, entries * 4, name + ".cdf");
     sums = makeBuffer(ctx, entries * 4, name + ".sums");
     counts = makeBuffer(ctx, entries * 4, name + ".counts");
+    cdfView = std::make_unique<gpu::BufferView>(ctx, *cdf, VK_FORMAT_R32_SFLOAT);
   }
   void recordReset(gpu::PassRecorder& rec, float initial) const {
     rec.fill("guiding.reset", *values, floatBits(initial));
@@ -56,6 +63,7 @@ struct Table {
 
 struct QGuiding::Tables {
   BufferPtr uniforms, points, gridBuckets, gridPoints, spawn, candidates;
+  ViewPtr pointsView, gridBucketsView, gridPointsView;
   Table q, v;
   std::unique_ptr<PointAcceptor> acceptor;
   uint32_t candidateCapacity = 0;
@@ -94,11 +102,17 @@ void QGuiding::allocate(uint32_t lightCount) {
   const uint64_t budget = settings_.pointBudget;
   const uint64_t strata = settings_.strata();
   grid_.hashSize = nextPowerOfTwo(std::max<uint32_t>(2 * settings_.pointBudget, 1024));
+  t_->pointsView.reset();
+  t_->gridBucketsView.reset();
+  t_->gridPointsView.reset();
   t_->uniforms = makeBuffer(ctx_, sizeof(shared::GuidingUniforms), "guiding.uniforms",
-                            gpu::MemoryUse::HostVisible);
+                            gpu::MemoryUse::HostVisible, 0);
   t_->points = makeBuffer(ctx_, budget * sizeof(CachePoint), "guiding.points");
   t_->gridBuckets = makeBuffer(ctx_, (grid_.hashSize + 1ull) * 4, "guiding.gridBuckets");
   t_->gridPoints = makeBuffer(ctx_, budget * 4, "guiding.gridPoints");
+  t_->pointsView = std::make_unique<gpu::BufferView>(ctx_, *t_->points, VK_FORMAT_R32G32B32A32_SFLOAT);
+  t_->gridBucketsView = std::make_unique<gpu::BufferView>(ctx_, *t_->gridBuckets, VK_FORMAT_R32_UINT);
+  t_->gridPointsView = std::make_unique<gpu::BufferView>(ctx_, *t_->gridPoints, VK_FORMAT_R32_UINT);
   t_->spawn = makeBuffer(ctx_, 16 + kSpawnCapacity * 32ull, "guiding.spawn");
   t_->candidateCapacity = settings_.dartPaths * settings_.dartBounces;
   t_->candidates = makeBuffer(ctx_, 16 + t_->candidateCapacity * 32ull, "guiding.candidates");
@@ -248,14 +262,14 @@ void QGuiding::writeUniforms() {
 
 void QGuiding::bind(gpu::PassBuilder& pass) const {
   pass.read(QL_BIND_GUIDING, *t_->uniforms)
-      .read(QL_BIND_CACHE_POINTS, *t_->points)
-      .read(QL_BIND_GRID_BUCKETS, *t_->gridBuckets)
-      .read(QL_BIND_GRID_POINTS, *t_->gridPoints)
-      .read(QL_BIND_Q_CDF, *t_->q.cdf)
+      .read(QL_BIND_CACHE_POINTS, *t_->pointsView)
+      .read(QL_BIND_GRID_BUCKETS, *t_->gridBucketsView)
+      .read(QL_BIND_GRID_POINTS, *t_->gridPointsView)
+      .read(QL_BIND_Q_CDF, *t_->q.cdfView)
       .write(QL_BIND_Q_SUM, *t_->q.sums)
       .write(QL_BIND_Q_COUNT, *t_->q.counts)
       .write(QL_BIND_SPAWN, *t_->spawn)
-      .read(QL_BIND_V_CDF, *t_->v.cdf)
+      .read(QL_BIND_V_CDF, *t_->v.cdfView)
       .write(QL_BIND_V_SUM, *t_->v.sums)
       .write(QL_BIND_V_COUNT, *t_->v.counts);
 }

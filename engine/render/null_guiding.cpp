@@ -10,9 +10,13 @@ NullGuiding::NullGuiding(const gpu::Context& ctx) {
   off.hashSize = 1;
   uniforms_ = std::make_unique<gpu::Buffer>(ctx, sizeof(off), "guiding.off");
   uniforms_->upload(ctx, &off, sizeof(off));
-  empty_ = std::make_unique<gpu::Buffer>(ctx, 64, "guiding.empty");
+  empty_ = std::make_unique<gpu::Buffer>(ctx, 64, "guiding.empty",
+                                         VK_BUFFER_USAGE_UNIFORM_TEXEL_BUFFER_BIT);
   std::vector<uint8_t> zeros(64, 0);
   empty_->upload(ctx, zeros.data(), zeros.size());
+  emptyFloats_ = std::make_unique<gpu::BufferView>(ctx, *empty_, VK_FORMAT_R32_SFLOAT);
+  emptyVec4s_ = std::make_unique<gpu::BufferView>(ctx, *empty_, VK_FORMAT_R32G32B32A32_SFLOAT);
+  emptyUints_ = std::make_unique<gpu::BufferView>(ctx, *empty_, VK_FORMAT_R32_UINT);
   // Written slots get their own buffers so no two bindings of one pass alias.
   for (int i = 0; i < 5; ++i) {
     writable_.push_back(std::make_unique<gpu::Buffer>(ctx, 64, "guiding.unused" + std::to_string(i)));
@@ -22,11 +26,11 @@ NullGuiding::NullGuiding(const gpu::Context& ctx) {
 
 void NullGuiding::bind(gpu::PassBuilder& pass) const {
   pass.read(QL_BIND_GUIDING, *uniforms_)
-      .read(QL_BIND_CACHE_POINTS, *empty_)
-      .read(QL_BIND_GRID_BUCKETS, *empty_)
-      .read(QL_BIND_GRID_POINTS, *empty_)
-      .read(QL_BIND_Q_CDF, *empty_)
-      .read(QL_BIND_V_CDF, *empty_)
+      .read(QL_BIND_CACHE_POINTS, *emptyVec4s_)
+      .read(QL_BIND_GRID_BUCKETS, *emptyUints_)
+      .read(QL_BIND_GRID_POINTS, *emptyUints_)
+      .read(QL_BIND_Q_CDF, *emptyFloats_)
+      .read(QL_BIND_V_CDF, *emptyFloats_)
       .write(QL_BIND_Q_SUM, *writable_[0])
       .write(QL_BIND_Q_COUNT, *writable_[1])
       .write(QL_BIND_SPAWN, *writable_[2])

@@ -25,6 +25,7 @@ class NullGuiding {
 
  private:
   std::unique_ptr<gpu::Buffer> uniforms_, empty_;
+  std::unique_ptr<gpu::BufferView> emptyFloats_, emptyVec4s_, emptyUints_;
   std::vector<std::unique_ptr<gpu::Buffer>> writable_;
 };
 

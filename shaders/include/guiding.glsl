@@ -4,26 +4,41 @@
 #extension GL_EXT_shader_atomic_float : require
 
 layout(binding = QL_BIND_GUIDING, scalar) uniform Guiding { GuidingUniforms guiding; };
-layout(binding = QL_BIND_CACHE_POINTS, scalar) readonly buffer CachePoints { GpuCachePoint cachePoints[]; };
-layout(binding = QL_BIND_GRID_BUCKETS, scalar) readonly buffer GridBuckets { uint gridBuckets[]; };
-layout(binding = QL_BIND_GRID_POINTS, scalar) readonly buffer GridPoints { uint gridPoints[]; };
-layout(binding = QL_BIND_Q_CDF, scalar) readonly buffer QCdf { float qCdf[]; };
+// Read-only tables are texel buffers: on lavapipe a texel fetch loads all
+// lanes at once where a storage-buffer load loops over them.
+layout(binding = QL_BIND_CACHE_POINTS) uniform samplerBuffer uCachePoints;  // 2 texels a point
+layout(binding = QL_BIND_GRID_BUCKETS) uniform usamplerBuffer uGridBuckets;
+layout(binding = QL_BIND_GRID_POINTS) uniform usamplerBuffer uGridPoints;
+layout(binding = QL_BIND_Q_CDF) uniform samplerBuffer uQCdf;
 layout(binding = QL_BIND_Q_SUM, scalar) buffer QSum { float qSum[]; };
 layout(binding = QL_BIND_Q_COUNT, scalar) buffer QCount { uint qCount[]; };
 layout(binding = QL_BIND_SPAWN, scalar) buffer Spawn { uint spawnCount; uint spawnPad0, spawnPad1, spawnPad2; vec4 spawnEntries[]; };
-layout(binding = QL_BIND_V_CDF, scalar) readonly buffer VCdf { float vCdf[]; };
+layout(binding = QL_BIND_V_CDF) uniform samplerBuffer uVCdf;
 layout(binding = QL_BIND_V_SUM, scalar) buffer VSum { float vSum[]; };
 layout(binding = QL_BIND_V_COUNT, scalar) buffer VCount { uint vCount[]; };
 
-#define QL_CDF_AT(i) qCdf[i]
+GpuCachePoint cachePointAt(uint i) {
+  vec4 a = texelFetch(uCachePoints, int(2u * i));
+  vec4 b = texelFetch(uCachePoints, int(2u * i + 1u));
+  GpuCachePoint p;
+  p.position = a.xyz;
+  p.radius = a.w;
+  p.normal = b.xyz;
+  p.pad = 0u;
+  return p;
+}
+float qCdf(uint i) { return texelFetch(uQCdf, int(i)).x; }
+float vCdf(uint i) { return texelFetch(uVCdf, int(i)).x; }
+
+#define QL_CDF_AT(i) qCdf(i)
 #include "shared/strata.h"
 
 uint strataCount() { return guiding.rows * guiding.cols; }
 
 
-#define QL_POINT_AT(i) cachePoints[i]
-#define QL_GRID_BUCKET_AT(h) gridBuckets[h]
-#define QL_GRID_POINT_AT(j) gridPoints[j]
+#define QL_POINT_AT(i) cachePointAt(i)
+#define QL_GRID_BUCKET_AT(h) texelFetch(uGridBuckets, int(h)).x
+#define QL_GRID_POINT_AT(j) texelFetch(uGridPoints, int(j)).x
 #include "shared/point_search.h"
 
 uint findCachePoint(vec3 p, vec3 n) {
@@ -32,7 +47,7 @@ uint findCachePoint(vec3 p, vec3 n) {
                                guiding.normalCosine);
 }
 
-TangentFrame pointFrame(uint point) { return frameFromNormal(cachePoints[point].normal); }
+TangentFrame pointFrame(uint point) { return frameFromNormal(cachePointAt(point).normal); }
 
 float guidedPdfWorld(uint point, TangentFrame f, vec3 dir) {
   return guidedPdf(point * strataCount(), localFromWorld(f, dir), guiding.rows, guiding.cols);
@@ -41,8 +56,8 @@ float guidedPdfWorld(uint point, TangentFrame f, vec3 dir) {
 // Q of one stratum, recovered from the CDF of Q_k cosInt_k.
 float storedQ(uint point, uint k) {
   uint base = point * strataCount();
-  float below = k > 0u ? qCdf[base + k - 1u] : 0.0;
-  return (qCdf[base + k] - below) / stratumCosineIntegral(k, guiding.rows, guiding.cols);
+  float below = k > 0u ? qCdf(base + k - 1u) : 0.0;
+  return (qCdf(base + k) - below) / stratumCosineIntegral(k, guiding.rows, guiding.cols);
 }
 
 // The Q table entry of direction `dir` leaving the point, or ~0 below its horizon.
@@ -57,7 +72,7 @@ uint qEntry(uint point, TangentFrame f, vec3 dir) {
 // total is sum Q_k cosInt_k); the specular lobe takes Q from the mirror direction.
 float scatteredEstimate(uint point, BsdfParams bsdf, vec3 woLocal, vec3 woWorld, vec3 shadingNormal) {
   uint n = strataCount();
-  float total = qCdf[point * n + n - 1u];
+  float total = qCdf(point * n + n - 1u);
   float estimate = luminance(bsdfDiffuseAlbedo(bsdf, woLocal.z)) * kInvPi * total;
   vec3 fresnel = specularFresnel(bsdf, woLocal.z);
   if (fresnel != vec3(0.0)) {
@@ -93,17 +108,17 @@ bool lightLearningOn(uint point) {
 
 float learnedLightProbability(uint point, uint light) {
   uint base = point * guiding.lightCount;
-  float below = light > 0u ? vCdf[base + light - 1u] : 0.0;
-  return (vCdf[base + light] - below) / vCdf[base + guiding.lightCount - 1u];
+  float below = light > 0u ? vCdf(base + light - 1u) : 0.0;
+  return (vCdf(base + light) - below) / vCdf(base + guiding.lightCount - 1u);
 }
 
 uint sampleLearnedLight(uint point, float u) {
   uint base = point * guiding.lightCount;
-  float target = u * vCdf[base + guiding.lightCount - 1u];
+  float target = u * vCdf(base + guiding.lightCount - 1u);
   uint lo = 0u, hi = guiding.lightCount - 1u;
   while (lo < hi) {
     uint mid = (lo + hi) >> 1u;
-    if (vCdf[base + mid] > target) hi = mid; else lo = mid + 1u;
+    if (vCdf(base + mid) > target) hi = mid; else lo = mid + 1u;
   }
   return lo;
 }
