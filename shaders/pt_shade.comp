@@ -76,7 +76,7 @@ void main() {
       if (depth > 0u) {
         if (!emitterHits) w = 0.0;
         else if (mis) {
-          uint li = triangles[s.triangle].light;
+          uint li = triangleAt(s.triangle).light;
           float lightPdf = li == kNoLight ? 0.0
               : triangleLightPdf(lights[li], lightSelectionPdf(st.prevPoint, li), dir, hit.t * length(dir));
           w = powerHeuristic(1.0, st.prevScatterPdf, 1.0, lightPdf);

@@ -27,10 +27,10 @@ GpuMaterial toGpu(const scene::MaterialAsset& m) {
   g.emissive = m.emissive;
   g.metallic = m.metallicFactor;
   g.roughness = m.roughnessFactor;
-  g.baseColorTexture = m.baseColorTexture;
-  g.metallicRoughnessTexture = m.metallicRoughnessTexture;
-  g.emissiveTexture = m.emissiveTexture;
-  g.flags = m.doubleSided ? shared::kMaterialDoubleSided : 0u;
+  g.baseColorTexture = float(m.baseColorTexture);
+  g.metallicRoughnessTexture = float(m.metallicRoughnessTexture);
+  g.emissiveTexture = float(m.emissiveTexture);
+  g.flags = float(m.doubleSided ? shared::kMaterialDoubleSided : 0u);
   g.specular = m.specularFactor;
   return g;
 }
@@ -71,7 +71,7 @@ void GpuScene::uploadStatic() {
     meshFirstVertex_.push_back(uint32_t(vertices.size()));
     meshFirstTriangle_.push_back(uint32_t(triangles_.size()));
     for (size_t i = 0; i < mesh.positions.size(); ++i)
-      vertices.push_back({mesh.positions[i], mesh.normals[i], mesh.uv0[i]});
+      vertices.push_back({mesh.positions[i], mesh.uv0[i].x, mesh.normals[i], mesh.uv0[i].y});
     for (size_t t = 0; t < mesh.triangleCount(); ++t) {
       GpuTriangle tri{};
       tri.v0 = meshFirstVertex_.back() + mesh.indices[t * 3];
@@ -102,8 +102,11 @@ void GpuScene::uploadStatic() {
   if (texels.empty()) texels.push_back(0xffffffffu);
   if (textures.empty()) textures.push_back({0, 1, 1, 0});
 
-  vertices_ = makeBuffer(ctx_, vertices, "scene.vertices");
-  materials_ = makeBuffer(ctx_, materials, "scene.materials");
+  constexpr VkBufferUsageFlags texel = VK_BUFFER_USAGE_UNIFORM_TEXEL_BUFFER_BIT;
+  vertices_ = makeBuffer(ctx_, vertices, "scene.vertices", texel);
+  materials_ = makeBuffer(ctx_, materials, "scene.materials", texel);
+  verticesView_ = std::make_unique<gpu::BufferView>(ctx_, *vertices_, VK_FORMAT_R32G32B32A32_SFLOAT);
+  materialsView_ = std::make_unique<gpu::BufferView>(ctx_, *materials_, VK_FORMAT_R32G32B32A32_SFLOAT);
   textures_ = makeBuffer(ctx_, textures, "scene.textures");
   texels_ = makeBuffer(ctx_, texels, "scene.texels", VK_BUFFER_USAGE_UNIFORM_TEXEL_BUFFER_BIT);
   texelView_ = std::make_unique<gpu::BufferView>(ctx_, *texels_, VK_FORMAT_R32_UINT);
@@ -178,9 +181,14 @@ void GpuScene::uploadLights(const SceneDraw& draw) {
   for (const GpuLight& l : lights_) cdf.push_back(running += l.power);
   if (cdf.empty()) cdf.push_back(0.0f);
 
+  constexpr VkBufferUsageFlags texel = VK_BUFFER_USAGE_UNIFORM_TEXEL_BUFFER_BIT;
+  lightCdfView_.reset();
+  triangleView_.reset();
   lightBuffer_ = makeBuffer(ctx_, lights_, "scene.lights");
-  lightCdf_ = makeBuffer(ctx_, cdf, "scene.lightCdf");
-  triangleBuffer_ = makeBuffer(ctx_, triangles_, "scene.triangles");
+  lightCdf_ = makeBuffer(ctx_, cdf, "scene.lightCdf", texel);
+  triangleBuffer_ = makeBuffer(ctx_, triangles_, "scene.triangles", texel);
+  lightCdfView_ = std::make_unique<gpu::BufferView>(ctx_, *lightCdf_, VK_FORMAT_R32_SFLOAT);
+  triangleView_ = std::make_unique<gpu::BufferView>(ctx_, *triangleBuffer_, VK_FORMAT_R32G32B32A32_UINT);
 }
 
 void GpuScene::update(const SceneDraw& draw) {
@@ -223,14 +231,14 @@ void GpuScene::bind(gpu::PassBuilder& pass) const {
   pass.read(QL_BIND_BVH_NODES, *bvhNodesView_)
       .read(QL_BIND_BVH_TRIS, *bvhTrisView_)
       .read(QL_BIND_BVH_INSTANCES, *bvhInstancesView_)
-      .read(QL_BIND_TRIANGLES, *triangleBuffer_)
-      .read(QL_BIND_VERTICES, *vertices_)
+      .read(QL_BIND_TRIANGLES, *triangleView_)
+      .read(QL_BIND_VERTICES, *verticesView_)
       .read(QL_BIND_INSTANCES, *instances_)
-      .read(QL_BIND_MATERIALS, *materials_)
+      .read(QL_BIND_MATERIALS, *materialsView_)
       .read(QL_BIND_TEXTURES, *textures_)
       .read(QL_BIND_TEXELS, *texelView_)
       .read(QL_BIND_LIGHTS, *lightBuffer_)
-      .read(QL_BIND_LIGHT_CDF, *lightCdf_);
+      .read(QL_BIND_LIGHT_CDF, *lightCdfView_);
 }
 
 }  // namespace qlight::render

@@ -64,7 +64,7 @@ class GpuScene {
   bool hasNonTriangleLights_ = false;
 
   std::unique_ptr<gpu::Buffer> vertices_, triangleBuffer_, materials_, textures_, texels_;
-  std::unique_ptr<gpu::BufferView> texelView_;
+  std::unique_ptr<gpu::BufferView> texelView_, verticesView_, materialsView_, triangleView_, lightCdfView_;
   std::unique_ptr<gpu::Buffer> bvhNodes_, bvhTris_, bvhInstances_, instances_, lightBuffer_, lightCdf_;
   std::unique_ptr<gpu::BufferView> bvhNodesView_, bvhTrisView_, bvhInstancesView_;
 };

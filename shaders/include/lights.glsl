@@ -1,7 +1,8 @@
 // Light selection (by power, from an inclusive CDF) and light sampling for
 // next event estimation, plus the pdf of hitting a light by a scattered ray.
 layout(binding = QL_BIND_LIGHTS, scalar) readonly buffer Lights { GpuLight lights[]; };
-layout(binding = QL_BIND_LIGHT_CDF, scalar) readonly buffer LightCdf { float lightCdf[]; };
+layout(binding = QL_BIND_LIGHT_CDF) uniform samplerBuffer uLightCdf;
+float lightCdfAt(uint i) { return texelFetch(uLightCdf, int(i)).x; }
 
 struct LightSample {
   vec3 direction;  // unit, from the shading point to the light
@@ -12,21 +13,21 @@ struct LightSample {
 };
 
 uint selectLight(float u, uint count, out float selectPdf) {
-  float total = lightCdf[count - 1u];
+  float total = lightCdfAt(count - 1u);
   float target = u * total;
   uint lo = 0u, hi = count - 1u;
   while (lo < hi) {
     uint mid = (lo + hi) >> 1u;
-    if (lightCdf[mid] <= target) lo = mid + 1u; else hi = mid;
+    if (lightCdfAt(mid) <= target) lo = mid + 1u; else hi = mid;
   }
-  float below = lo > 0u ? lightCdf[lo - 1u] : 0.0;
-  selectPdf = (lightCdf[lo] - below) / total;
+  float below = lo > 0u ? lightCdfAt(lo - 1u) : 0.0;
+  selectPdf = (lightCdfAt(lo) - below) / total;
   return lo;
 }
 
 float lightSelectPdf(uint index, uint count) {
-  float below = index > 0u ? lightCdf[index - 1u] : 0.0;
-  return (lightCdf[index] - below) / lightCdf[count - 1u];
+  float below = index > 0u ? lightCdfAt(index - 1u) : 0.0;
+  return (lightCdfAt(index) - below) / lightCdfAt(count - 1u);
 }
 
 vec3 triangleLightNormal(GpuLight l) {
@@ -36,11 +37,11 @@ vec3 triangleLightNormal(GpuLight l) {
 
 // Emission of an emissive triangle at barycentrics (b1, b2), texture included.
 vec3 triangleLightRadiance(GpuLight l, vec2 b) {
-  GpuTriangle tri = triangles[l.triangle];
-  GpuMaterial m = materials[tri.material];
-  if (m.emissiveTexture < 0) return l.emission;
-  vec2 uv = (1.0 - b.x - b.y) * vertices[tri.v0].uv + b.x * vertices[tri.v1].uv + b.y * vertices[tri.v2].uv;
-  return l.emission * sampleTexture(m.emissiveTexture, uv).rgb;
+  GpuTriangle tri = triangleAt(l.triangle);
+  int texture = int(materialAt(tri.material).emissiveTexture);
+  if (texture < 0) return l.emission;
+  vec2 uv = (1.0 - b.x - b.y) * vertexUv(tri.v0) + b.x * vertexUv(tri.v1) + b.y * vertexUv(tri.v2);
+  return l.emission * sampleTexture(texture, uv).rgb;
 }
 
 // Solid-angle pdf of sampling direction `dir` toward a point on triangle light `l`

@@ -10,12 +10,59 @@ layout(binding = QL_BIND_BVH_INSTANCES) uniform samplerBuffer uBvhInstances;
 #define QL_BVH_INST(i) texelFetch(uBvhInstances, int(i))
 #include "shared/bvh_traverse.h"
 
-layout(binding = QL_BIND_TRIANGLES, scalar) readonly buffer Triangles { GpuTriangle triangles[]; };
-layout(binding = QL_BIND_VERTICES, scalar) readonly buffer Vertices { GpuVertex vertices[]; };
+layout(binding = QL_BIND_TRIANGLES) uniform usamplerBuffer uTriangles;  // 2 texels each
+layout(binding = QL_BIND_VERTICES) uniform samplerBuffer uVertices;     // 2 texels each
 layout(binding = QL_BIND_INSTANCES, scalar) readonly buffer Instances { GpuInstance instances[]; };
-layout(binding = QL_BIND_MATERIALS, scalar) readonly buffer Materials { GpuMaterial materials[]; };
+layout(binding = QL_BIND_MATERIALS) uniform samplerBuffer uMaterials;   // 4 texels each
 layout(binding = QL_BIND_TEXTURES, scalar) readonly buffer Textures { GpuTexture textures[]; };
 layout(binding = QL_BIND_TEXELS) uniform usamplerBuffer uTexels;
+
+GpuTriangle triangleAt(uint i) {
+  uvec4 a = texelFetch(uTriangles, int(2u * i));
+  GpuTriangle t;
+  t.v0 = a.x;
+  t.v1 = a.y;
+  t.v2 = a.z;
+  t.material = a.w;
+  t.light = texelFetch(uTriangles, int(2u * i + 1u)).x;
+  t.pad0 = t.pad1 = t.pad2 = 0u;
+  return t;
+}
+
+GpuVertex vertexAt(uint i) {
+  vec4 a = texelFetch(uVertices, int(2u * i));
+  vec4 b = texelFetch(uVertices, int(2u * i + 1u));
+  GpuVertex v;
+  v.position = a.xyz;
+  v.u = a.w;
+  v.normal = b.xyz;
+  v.v = b.w;
+  return v;
+}
+
+vec2 vertexUv(uint i) {
+  return vec2(texelFetch(uVertices, int(2u * i)).w, texelFetch(uVertices, int(2u * i + 1u)).w);
+}
+
+GpuMaterial materialAt(uint i) {
+  vec4 a = texelFetch(uMaterials, int(4u * i));
+  vec4 b = texelFetch(uMaterials, int(4u * i + 1u));
+  vec4 c = texelFetch(uMaterials, int(4u * i + 2u));
+  vec4 d = texelFetch(uMaterials, int(4u * i + 3u));
+  GpuMaterial m;
+  m.baseColor = a;
+  m.emissive = b.xyz;
+  m.metallic = b.w;
+  m.roughness = c.x;
+  m.specular = c.y;
+  m.flags = c.z;
+  m.pad0 = 0.0;
+  m.baseColorTexture = d.x;
+  m.metallicRoughnessTexture = d.y;
+  m.emissiveTexture = d.z;
+  m.pad1 = 0.0;
+  return m;
+}
 
 struct Surface {
   vec3 position;
@@ -61,11 +108,11 @@ Surface resolveSurface(BvhHit hit, vec3 origin, vec3 dir) {
   GpuInstance inst = instances[hit.instance];
   Surface s;
   s.triangle = inst.firstTriangle + hit.primitive;
-  GpuTriangle tri = triangles[s.triangle];
-  GpuVertex a = vertices[tri.v0], b = vertices[tri.v1], c = vertices[tri.v2];
+  GpuTriangle tri = triangleAt(s.triangle);
+  GpuVertex a = vertexAt(tri.v0), b = vertexAt(tri.v1), c = vertexAt(tri.v2);
   float w = 1.0 - hit.u - hit.v;
   s.position = origin + hit.t * dir;
-  s.uv = w * a.uv + hit.u * b.uv + hit.v * c.uv;
+  s.uv = w * vec2(a.u, a.v) + hit.u * vec2(b.u, b.v) + hit.v * vec2(c.u, c.v);
   s.material = tri.material;
   // M^-T (e1 x e2) is the world normal of the glTF front face, mirrored transforms included.
   vec3 ng = normalize(toWorldNormal(inst, cross(b.position - a.position, c.position - a.position)));
@@ -81,10 +128,10 @@ Surface resolveSurface(BvhHit hit, vec3 origin, vec3 dir) {
 }
 
 BsdfParams surfaceBsdf(Surface s) {
-  GpuMaterial m = materials[s.material];
+  GpuMaterial m = materialAt(s.material);
   BsdfParams p;
-  p.baseColor = m.baseColor.rgb * sampleTexture(m.baseColorTexture, s.uv).rgb;
-  vec4 mr = sampleTexture(m.metallicRoughnessTexture, s.uv);
+  p.baseColor = m.baseColor.rgb * sampleTexture(int(m.baseColorTexture), s.uv).rgb;
+  vec4 mr = sampleTexture(int(m.metallicRoughnessTexture), s.uv);
   p.metallic = clamp(m.metallic * mr.b, 0.0, 1.0);
   p.roughness = clamp(m.roughness * mr.g, 0.0, 1.0);
   p.specular = clamp(m.specular, 0.0, 1.0);
@@ -93,8 +140,8 @@ BsdfParams surfaceBsdf(Surface s) {
 
 // Radiance leaving the surface toward the ray origin: front side only unless double-sided.
 vec3 surfaceEmission(Surface s) {
-  GpuMaterial m = materials[s.material];
-  if (!s.frontFace && (m.flags & kMaterialDoubleSided) == 0u) return vec3(0.0);
+  GpuMaterial m = materialAt(s.material);
+  if (!s.frontFace && (uint(m.flags) & kMaterialDoubleSided) == 0u) return vec3(0.0);
   if (m.emissive == vec3(0.0)) return vec3(0.0);
-  return m.emissive * sampleTexture(m.emissiveTexture, s.uv).rgb;
+  return m.emissive * sampleTexture(int(m.emissiveTexture), s.uv).rgb;
 }

@@ -6,7 +6,13 @@
 
 QL_BEGIN
 
+// The path passes read triangles, vertices, materials and the light CDF from
+// texel buffers (whole texels load at once on lavapipe): each struct below is
+// a whole number of 16-byte texels, and integers that share a texel with
+// floats are stored as float values (exact below 2^24), never as bit patterns.
+
 // One triangle's shading data; BVH hits map to it through GpuInstance.firstTriangle.
+// Two RGBA32UI texels.
 struct GpuTriangle {
   uint v0, v1, v2;  // indices into the vertex array (already offset per mesh)
   uint material;
@@ -16,10 +22,12 @@ struct GpuTriangle {
 QL_CHECK_SIZE(GpuTriangle, 32);
 QL_CONST uint kNoLight = 0xffffffffu;
 
+// Two RGBA32F texels: (position, u), (normal, v), object space.
 struct GpuVertex {
-  vec3 position;  // object space
-  vec3 normal;    // object space
-  vec2 uv;
+  vec3 position;
+  float u;
+  vec3 normal;
+  float v;
 };
 QL_CHECK_SIZE(GpuVertex, 32);
 
@@ -34,17 +42,19 @@ QL_CHECK_SIZE(GpuInstance, 64);
 
 QL_CONST uint kMaterialDoubleSided = 1u;
 
+// Four RGBA32F texels.
 struct GpuMaterial {
   vec4 baseColor;  // linear RGBA
   vec3 emissive;   // linear radiance (factor x strength)
   float metallic;
   float roughness;
-  int baseColorTexture;  // -1: none
-  int metallicRoughnessTexture;
-  int emissiveTexture;
-  uint flags;
   float specular;  // KHR_materials_specular specularFactor (1 = plain glTF)
-  uint pad1, pad2;
+  float flags;     // kMaterial* bits, as a float value
+  float pad0;
+  float baseColorTexture;  // texture index as a float value, -1: none
+  float metallicRoughnessTexture;
+  float emissiveTexture;
+  float pad1;
 };
 QL_CHECK_SIZE(GpuMaterial, 64);
 
