@@ -147,9 +147,11 @@ void QGuiding::chooseRadii(const render::GpuScene& scene) {
   rejectionMax_ = settings_.pointSet == PointSet::PhotonMap ? rejectionMin_
                   : settings_.rejectionMax > 0 ? settings_.rejectionMax
                                                : 3.0f * rejectionMin_;
-  // Saturated darts leave no surface point farther than the rejection distance
-  // from a point; the margin covers unsaturated regions.
-  searchRadius_ = 1.25f * rejectionMax_;
+  // Saturated darts leave no surface point much farther than the rejection
+  // distance from a point; gaps are filled by camera spawns. A larger radius
+  // covers the same but visits more points per search (9% of the shade pass
+  // at 1.25x on lavapipe).
+  searchRadius_ = rejectionMax_;
   grid_.cellSize = 2.0f * searchRadius_;
 }
 
