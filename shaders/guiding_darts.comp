@@ -15,15 +15,14 @@
 #include "include/lights.glsl"
 
 layout(local_size_x = 64) in;
-layout(binding = QL_BIND_DART_CANDIDATES, scalar) buffer Candidates { uint candidateCount; uint cPad0, cPad1, cPad2; vec4 candidates[]; };
+// Each path's bounce has its own slot (unwritten slots keep the NaN fill), so
+// the candidates, and the points accepted from them, do not depend on timing.
+layout(binding = QL_BIND_DART_CANDIDATES, scalar) writeonly buffer Candidates { vec4 candidates[]; };
 layout(push_constant, scalar) uniform Push { DartsPush pc; };
 
-void emit(vec3 p, vec3 n, float ao) {
-  uint slot = atomicAdd(candidateCount, 1u);
-  if (slot < pc.capacity) {
-    candidates[2u * slot] = vec4(p, ao);
-    candidates[2u * slot + 1u] = vec4(n, 0.0);
-  }
+void emit(uint slot, vec3 p, vec3 n, float ao) {
+  candidates[2u * slot] = vec4(p, ao);
+  candidates[2u * slot + 1u] = vec4(n, 0.0);
 }
 
 // Share of short rays around n that hit something within the AO radius.
@@ -65,7 +64,7 @@ void main() {
     if (!traceClosest(origin, dir, 1e30, hit)) break;
     Surface s = resolveSurface(hit, origin, dir);
     vec3 p = offsetRayOrigin(s.position, s.geometricNormal);
-    emit(s.position, s.geometricNormal, occlusion(p, s.geometricNormal, rng));
+    emit(id * pc.maxBounces + bounce, s.position, s.geometricNormal, occlusion(p, s.geometricNormal, rng));
     dir = worldFromLocal(frameFromNormal(s.geometricNormal), sampleCosineHemisphere(rngNext2(rng)));
     origin = p;
   }

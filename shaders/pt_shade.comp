@@ -97,8 +97,8 @@ void main() {
       if (depth < frame.maxDepth) st.covered++;
       if (learn && st.prevEntry != kNoCachePoint)
         recordQTarget(st.prevEntry, luminance(le) + scatteredEstimate(point, bsdf, wo, -dir, ns));
-    } else if (usePoints && depth == 0u && (guiding.flags & kGuideSpawn) != 0u && rngNextFloat(rng) < 0.125) {
-      reportUncovered(s.position, s.geometricNormal);
+    } else if (usePoints && depth == 0u && (guiding.flags & kGuideSpawn) != 0u) {
+      reportUncovered(path, pc.pathCount, frame.frameIndex + pc.sampleIndex, s.position, s.geometricNormal);
     }
 
     if (depth < frame.maxDepth) {

@@ -11,7 +11,7 @@ layout(local_size_x = 256) in;
 layout(binding = 0, scalar) buffer Values { float values[]; };
 layout(binding = 1, scalar) buffer Visits { uint visits[]; };
 layout(binding = 2, scalar) writeonly buffer Weights { float weights[]; };
-layout(binding = 3, scalar) buffer Sums { float sums[]; };
+layout(binding = 3, scalar) buffer Sums { uint sums[]; };  // fixed point (lo, hi) pairs
 layout(binding = 4, scalar) buffer Counts { uint counts[]; };
 layout(push_constant, scalar) uniform Push { TableUpdatePush pc; };
 
@@ -19,10 +19,12 @@ void main() {
   uint e = gl_GlobalInvocationID.x;
   if (e >= pc.entries) return;
   uint m = counts[e];
-  float next = updatedQ(values[e], sums[e], m, visits[e], pc.alphaMin, pc.alphaMax, pc.floorValue);
+  float sum = fixedSumToFloat(sums[2u * e], sums[2u * e + 1u]);
+  float next = updatedQ(values[e], sum, m, visits[e], pc.alphaMin, pc.alphaMax, pc.floorValue);
   values[e] = next;
   visits[e] += m;
-  sums[e] = 0.0;
+  sums[2u * e] = 0u;
+  sums[2u * e + 1u] = 0u;
   counts[e] = 0u;
   uint k = e % pc.segmentLength;
   weights[e] = pc.cosineWeights != 0u ? guidedStratumWeight(next, k, pc.rows, pc.cols) : next;

@@ -239,9 +239,7 @@ void Context::createDevice() {
                              "\" lacks scalarBlockLayout or synchronization2");
 
   floatAtomicAdd_ = atomicExt && atomicFloat.shaderBufferFloat32AtomicAdd;
-  if (!floatAtomicAdd_)  // Q-learning accumulates its targets with float atomics
-    throw std::runtime_error(std::string("device \"") + properties_.deviceName +
-                             "\" lacks shaderBufferFloat32AtomicAdd (VK_EXT_shader_atomic_float)");
+
   VkPhysicalDeviceShaderAtomicFloatFeaturesEXT enableAtomic{
       VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_SHADER_ATOMIC_FLOAT_FEATURES_EXT};
   enableAtomic.shaderBufferFloat32AtomicAdd = VK_TRUE;

@@ -46,7 +46,7 @@ struct Table {
     values = makeBuffer(ctx, entries * 4, name + ".values");
     visits = makeBuffer(ctx, entries * 4, name + ".visits");
     cdf = makeBuffer(ctx, entries * 4, name + ".cdf");
-    sums = makeBuffer(ctx, entries * 4, name + ".sums");
+    sums = makeBuffer(ctx, entries * 8, name + ".sums");  // 64-bit fixed point per entry
     counts = makeBuffer(ctx, entries * 4, name + ".counts");
     cdfView = std::make_unique<gpu::BufferView>(ctx, *cdf, VK_FORMAT_R32_SFLOAT);
   }
@@ -113,17 +113,17 @@ void QGuiding::allocate(uint32_t lightCount) {
   t_->pointsView = std::make_unique<gpu::BufferView>(ctx_, *t_->points, VK_FORMAT_R32G32B32A32_SFLOAT);
   t_->gridBucketsView = std::make_unique<gpu::BufferView>(ctx_, *t_->gridBuckets, VK_FORMAT_R32_UINT);
   t_->gridPointsView = std::make_unique<gpu::BufferView>(ctx_, *t_->gridPoints, VK_FORMAT_R32_UINT);
-  t_->spawn = makeBuffer(ctx_, 16 + kSpawnCapacity * 32ull, "guiding.spawn");
+  t_->spawn = makeBuffer(ctx_, kSpawnCapacity * 32ull, "guiding.spawn");
   t_->candidateCapacity = settings_.dartPaths * settings_.dartBounces;
-  t_->candidates = makeBuffer(ctx_, 16 + t_->candidateCapacity * 32ull, "guiding.candidates");
+  t_->candidates = makeBuffer(ctx_, t_->candidateCapacity * 32ull, "guiding.candidates");
   t_->q.allocate(ctx_, budget * strata, "guiding.q");
   lightCount_ = lightCount;
   t_->v.allocate(ctx_, std::max<uint64_t>(budget * lightCount, 1), "guiding.v");
   pointCount_ = std::min<uint32_t>(pointCount_, settings_.pointBudget);
   grid_.buckets.assign(grid_.hashSize + 1, 0);
   t_->gridBuckets->upload(ctx_, grid_.buckets.data(), grid_.buckets.size() * 4);
-  std::vector<uint8_t> zeros(16, 0);
-  t_->spawn->upload(ctx_, zeros.data(), 16);
+  std::vector<uint8_t> zeros(kSpawnCapacity * 32ull, 0);
+  t_->spawn->upload(ctx_, zeros.data(), zeros.size());
 }
 
 void QGuiding::resetTables() {
@@ -175,7 +175,6 @@ void QGuiding::generatePoints(ecs::Registry& registry, const render::GpuScene& s
 
   // Darts from the lights; the GPU traces, the CPU accepts by rejection distance.
   std::vector<glm::vec4> raw;
-  uint32_t found = 0;
   if (scene.lightCount() > 0) {
     shared::DartsPush push{};
     push.pathCount = settings_.dartPaths;
@@ -189,19 +188,18 @@ void QGuiding::generatePoints(ecs::Registry& registry, const render::GpuScene& s
     push.capacity = t_->candidateCapacity;
     ctx_.submitAndWait([&](VkCommandBuffer cmd) {
       gpu::PassRecorder rec(ctx_, cmd);
-      rec.fill("guiding.darts.clear", *t_->candidates, 0);
+      rec.fill("guiding.darts.clear", *t_->candidates, 0xffffffffu);  // NaN: slot unused
       auto pass = rec.pass("guiding.darts", darts_);
       scene.bind(pass);
       pass.write(QL_BIND_DART_CANDIDATES, *t_->candidates).push(push).dispatchThreads(push.pathCount);
       rec.finish();
     });
-    t_->candidates->download(ctx_, &found, 4);
-    found = std::min(found, t_->candidateCapacity);
-    raw.resize(size_t(found) * 2);
-    if (found) t_->candidates->download(ctx_, raw.data(), raw.size() * sizeof(glm::vec4), 16);
+    raw.resize(size_t(t_->candidateCapacity) * 2);
+    t_->candidates->download(ctx_, raw.data(), raw.size() * sizeof(glm::vec4));
   }
   t_->acceptor = std::make_unique<PointAcceptor>(rejectionMax_, settings_.normalCosine);
-  for (uint32_t i = 0; i < found && pointCount_ < settings_.pointBudget; ++i) {
+  for (size_t i = 0; 2 * i < raw.size() && pointCount_ < settings_.pointBudget; ++i) {
+    if (!std::isfinite(raw[2 * i].x)) continue;  // the dart's path ended before this bounce
     PointCandidate c{glm::vec3(raw[2 * i]), glm::vec3(raw[2 * i + 1]), raw[2 * i].w};
     float radius = settings_.pointSet == PointSet::PhotonMap
                        ? rejectionMin_
@@ -309,16 +307,18 @@ void QGuiding::recordLearning(gpu::PassRecorder& rec) {
 
 void QGuiding::afterFrame(ecs::Registry& registry) {
   if (!t_->acceptor) return;
-  uint32_t count = 0;
-  t_->spawn->download(ctx_, &count, 4);
-  if (count == 0) return;
-  count = std::min(count, kSpawnCapacity);
-  std::vector<glm::vec4> raw(size_t(count) * 2);
-  t_->spawn->download(ctx_, raw.data(), raw.size() * sizeof(glm::vec4), 16);
-  uint32_t zero = 0;
-  t_->spawn->upload(ctx_, &zero, 4);
+  // Fixed slots (w = 1 where written this frame), read in slot order: the
+  // points added do not depend on the GPU's timing.
+  std::vector<glm::vec4> raw(kSpawnCapacity * 2ull);
+  t_->spawn->download(ctx_, raw.data(), raw.size() * sizeof(glm::vec4));
+  bool any = false;
+  for (uint32_t i = 0; i < kSpawnCapacity && !any; ++i) any = raw[2 * i].w != 0.0f;
+  if (!any) return;
+  std::vector<glm::vec4> zeros(raw.size(), glm::vec4(0.0f));
+  t_->spawn->upload(ctx_, zeros.data(), zeros.size() * sizeof(glm::vec4));
   uint32_t added = 0;
-  for (uint32_t i = 0; i < count && pointCount_ + added < settings_.pointBudget; ++i) {
+  for (uint32_t i = 0; i < kSpawnCapacity && pointCount_ + added < settings_.pointBudget; ++i) {
+    if (raw[2 * i].w == 0.0f) continue;
     PointCandidate c{glm::vec3(raw[2 * i]), glm::vec3(raw[2 * i + 1]), 0.0f};
     CachePoint accepted;
     if (t_->acceptor->tryAccept(c, rejectionMin_, accepted)) {

@@ -1,7 +1,6 @@
 // Cache points, their hashed grid and learned Q distributions, as the path
 // tracer uses them: nearest compatible point, guided sampling and pdf, and the
 // Q-learning targets it accumulates for the update pass (D&K eq. 5).
-#extension GL_EXT_shader_atomic_float : require
 
 layout(binding = QL_BIND_GUIDING, scalar) uniform Guiding { GuidingUniforms guiding; };
 // Read-only tables are texel buffers: on lavapipe a texel fetch loads all
@@ -10,11 +9,11 @@ layout(binding = QL_BIND_CACHE_POINTS) uniform samplerBuffer uCachePoints;  // 2
 layout(binding = QL_BIND_GRID_BUCKETS) uniform usamplerBuffer uGridBuckets;
 layout(binding = QL_BIND_GRID_POINTS) uniform usamplerBuffer uGridPoints;
 layout(binding = QL_BIND_Q_CDF) uniform samplerBuffer uQCdf;
-layout(binding = QL_BIND_Q_SUM, scalar) buffer QSum { float qSum[]; };
+layout(binding = QL_BIND_Q_SUM, scalar) buffer QSum { uint qSum[]; };  // (lo, hi) pairs
 layout(binding = QL_BIND_Q_COUNT, scalar) buffer QCount { uint qCount[]; };
-layout(binding = QL_BIND_SPAWN, scalar) buffer Spawn { uint spawnCount; uint spawnPad0, spawnPad1, spawnPad2; vec4 spawnEntries[]; };
+layout(binding = QL_BIND_SPAWN, scalar) buffer Spawn { vec4 spawnEntries[]; };  // 2 per slot
 layout(binding = QL_BIND_V_CDF) uniform samplerBuffer uVCdf;
-layout(binding = QL_BIND_V_SUM, scalar) buffer VSum { float vSum[]; };
+layout(binding = QL_BIND_V_SUM, scalar) buffer VSum { uint vSum[]; };  // (lo, hi) pairs
 layout(binding = QL_BIND_V_COUNT, scalar) buffer VCount { uint vCount[]; };
 
 GpuCachePoint cachePointAt(uint i) {
@@ -84,19 +83,31 @@ float scatteredEstimate(uint point, BsdfParams bsdf, vec3 woLocal, vec3 woWorld,
   return estimate;
 }
 
+// Adds a non-negative target to a (lo, hi) fixed-point sum; the carry out of
+// lo goes to hi, so the total is exact whatever order the atomics run in.
+uvec2 fixedPoint(float target) {
+  float x = floor(min(target, kTargetMax) * kTargetScale);
+  float hi = floor(x / kTwoPow32);
+  return uvec2(uint(x - hi * kTwoPow32), uint(hi));
+}
+
 void recordQTarget(uint entry, float target) {
-  if (entry == kNoCachePoint || !(target >= 0.0) || !(target < 1e30)) return;
-  atomicAdd(qSum[entry], target);
+  if (entry == kNoCachePoint || !(target >= 0.0) || isinf(target)) return;
+  uvec2 v = fixedPoint(target);
+  uint old = atomicAdd(qSum[2u * entry], v.x);
+  atomicAdd(qSum[2u * entry + 1u], v.y + (old + v.x < old ? 1u : 0u));
   atomicAdd(qCount[entry], 1u);
 }
 
-// Camera hits that no point covers become candidates for new points.
-void reportUncovered(vec3 p, vec3 n) {
-  uint slot = atomicAdd(spawnCount, 1u);
-  if (slot < guiding.spawnCapacity) {
-    spawnEntries[2u * slot] = vec4(p, 0.0);
-    spawnEntries[2u * slot + 1u] = vec4(n, 0.0);
-  }
+// Camera hits that no point covers become candidates for new points. One
+// pixel of each group of `stride` reports per sample, into its group's fixed
+// slot (w = 1 marks it written), so the candidates do not depend on timing.
+void reportUncovered(uint path, uint pathCount, uint sampleId, vec3 p, vec3 n) {
+  uint stride = max(8u, (pathCount + guiding.spawnCapacity - 1u) / guiding.spawnCapacity);
+  if (path % stride != sampleId % stride) return;
+  uint slot = path / stride;
+  spawnEntries[2u * slot] = vec4(p, 1.0);
+  spawnEntries[2u * slot + 1u] = vec4(n, 0.0);
 }
 
 // --- learned light selection, D&K section 4: V(point, light) ---
@@ -124,8 +135,10 @@ uint sampleLearnedLight(uint point, float u) {
 }
 
 void recordVTarget(uint point, uint light, float target) {
-  if (!(target >= 0.0) || !(target < 1e30)) return;
+  if (!(target >= 0.0) || isinf(target)) return;
   uint entry = point * guiding.lightCount + light;
-  atomicAdd(vSum[entry], target);
+  uvec2 v = fixedPoint(target);
+  uint old = atomicAdd(vSum[2u * entry], v.x);
+  atomicAdd(vSum[2u * entry + 1u], v.y + (old + v.x < old ? 1u : 0u));
   atomicAdd(vCount[entry], 1u);
 }

@@ -35,7 +35,7 @@ struct GuidingUniforms {
   float qFloor;           // every Q stays above this, so every direction stays possible
   float lightMix;         // share of the learned light choice (the rest by power)
   uint lightCount;        // lights with learned values (0: light learning off)
-  uint spawnCapacity;     // entries in the spawn buffer
+  uint spawnCapacity;     // slots in the spawn buffer (fixed slot per pixel group)
   float alphaMin;
   float alphaMax;
   uint pad0;
@@ -91,6 +91,17 @@ struct DartsPush {
 };
 QL_CHECK_SIZE(DartsPush, 48);
 #define QL_BIND_DART_CANDIDATES 25
+
+// Targets are summed as 64-bit fixed point (two uint words, 20 fraction bits):
+// integer addition does not depend on the order the GPU's atomics run in, so
+// learning, and therefore rendering, is the same for the same seed.
+QL_CONST float kTargetScale = 1048576.0f;      // 2^20
+QL_CONST float kTargetMax = 1.0e9f;            // larger targets are clamped
+QL_CONST float kTwoPow32 = 4294967296.0f;
+
+QL_FN float fixedSumToFloat(uint lo, uint hi) {
+  return float(hi) * (kTwoPow32 / kTargetScale) + float(lo) / kTargetScale;
+}
 
 // Learning rate of update n (n earlier updates): clamp(1 / (1 + n), min, max).
 QL_FN float learningRate(uint n, float alphaMin, float alphaMax) {
