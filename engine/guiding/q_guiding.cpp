@@ -13,6 +13,7 @@ namespace {
 
 constexpr uint32_t kSpawnCapacity = 4096;
 constexpr uint64_t kMaxLightEntries = 4u << 20;  // points x lights for light learning
+constexpr uint32_t kLightUpdateInterval = 4;
 
 uint32_t nextPowerOfTwo(uint32_t v) {
   uint32_t p = 1;
@@ -127,12 +128,15 @@ void QGuiding::allocate(uint32_t lightCount) {
 }
 
 void QGuiding::resetTables() {
+  lightRefresh_ = true;
   // Fresh tables: uniform Q (cosine sampling), no visits; the update pass with
   // no targets then writes the CDF weights, and the scan the CDFs.
   ctx_.submitAndWait([&](VkCommandBuffer cmd) {
     gpu::PassRecorder rec(ctx_, cmd);
     t_->q.recordReset(rec, settings_.initialQ);
-    t_->v.recordReset(rec, settings_.initialQ);
+    // Light values start at the floor: until a light has shown a contribution at
+    // a point, NEE picks it by power (the mixture), not uniformly among all lights.
+    t_->v.recordReset(rec, settings_.qFloor);
     recordLearning(rec);
     rec.finish();
   });
@@ -299,9 +303,13 @@ void QGuiding::recordLearning(gpu::PassRecorder& rec) {
   };
   updateTable("guiding.q_update", t_->q, settings_.strata(), true);
   scan_.scanSegments(rec, *t_->q.cdf, pointCount_, settings_.strata());
-  if (lightCount_ > 0) {
+  // The light values are a points x lights table, far larger than Q for many
+  // lights: they are updated every kLightUpdateInterval frames. Targets keep
+  // accumulating in between and the batched update applies them all at once.
+  if (lightCount_ > 0 && (lightFrame_++ % kLightUpdateInterval == 0 || lightRefresh_)) {
     updateTable("guiding.v_update", t_->v, lightCount_, false);
     scan_.scanSegments(rec, *t_->v.cdf, pointCount_, lightCount_);
+    lightRefresh_ = false;
   }
 }
 
@@ -329,7 +337,8 @@ void QGuiding::afterFrame(ecs::Registry& registry) {
   if (added == 0) return;
   spawned_ += added;
   uploadPoints(registry);
-  // The new points' tables hold the initial Q; give them their CDFs now.
+  // The new points' tables hold the initial values; give them their CDFs now.
+  lightRefresh_ = true;
   ctx_.submitAndWait([&](VkCommandBuffer cmd) {
     gpu::PassRecorder rec(ctx_, cmd);
     recordLearning(rec);

@@ -70,6 +70,8 @@ class QGuiding {
   uint32_t spawned_ = 0;
   bool needsPoints_ = true;
   uint32_t generation_ = 0;
+  uint32_t lightFrame_ = 0;     // counts learning passes, for the light-value update interval
+  bool lightRefresh_ = true;    // light CDFs must be rebuilt at the next learning pass
 };
 
 }  // namespace qlight::guiding
