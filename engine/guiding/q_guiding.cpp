@@ -128,16 +128,16 @@ void QGuiding::allocate(uint32_t lightCount) {
 }
 
 void QGuiding::resetTables() {
-  lightRefresh_ = true;
   // Fresh tables: uniform Q (cosine sampling), no visits; the update pass with
-  // no targets then writes the CDF weights, and the scan the CDFs.
+  // no targets then writes the CDF weights, and the scan the CDFs, for every
+  // slot of the budget, so points added later start with a valid distribution.
   ctx_.submitAndWait([&](VkCommandBuffer cmd) {
     gpu::PassRecorder rec(ctx_, cmd);
     t_->q.recordReset(rec, settings_.initialQ);
     // Light values start at the floor: until a light has shown a contribution at
     // a point, NEE picks it by power (the mixture), not uniformly among all lights.
     t_->v.recordReset(rec, settings_.qFloor);
-    recordLearning(rec);
+    recordTables(rec, settings_.pointBudget);
     rec.finish();
   });
 }
@@ -286,10 +286,12 @@ render::GuidingBinder QGuiding::binder() const {
   return b;
 }
 
-void QGuiding::recordLearning(gpu::PassRecorder& rec) {
-  if (pointCount_ == 0) return;
+void QGuiding::recordLearning(gpu::PassRecorder& rec) { recordTables(rec, pointCount_); }
+
+void QGuiding::recordTables(gpu::PassRecorder& rec, uint32_t rows) {
+  if (rows == 0) return;
   auto updateTable = [&](const char* name, const Table& table, uint32_t segment, bool cosine) {
-    shared::TableUpdatePush push{pointCount_ * segment, segment, settings_.rows, settings_.cols,
+    shared::TableUpdatePush push{rows * segment, segment, settings_.rows, settings_.cols,
                                  cosine ? 1u : 0u, settings_.alphaMin, settings_.alphaMax,
                                  settings_.qFloor};
     rec.pass(name, update_)
@@ -302,14 +304,13 @@ void QGuiding::recordLearning(gpu::PassRecorder& rec) {
         .dispatchThreads(push.entries);
   };
   updateTable("guiding.q_update", t_->q, settings_.strata(), true);
-  scan_.scanSegments(rec, *t_->q.cdf, pointCount_, settings_.strata());
+  scan_.scanSegments(rec, *t_->q.cdf, rows, settings_.strata());
   // The light values are a points x lights table, far larger than Q for many
   // lights: they are updated every kLightUpdateInterval frames. Targets keep
   // accumulating in between and the batched update applies them all at once.
-  if (lightCount_ > 0 && (lightFrame_++ % kLightUpdateInterval == 0 || lightRefresh_)) {
+  if (lightCount_ > 0 && lightFrame_++ % kLightUpdateInterval == 0) {
     updateTable("guiding.v_update", t_->v, lightCount_, false);
-    scan_.scanSegments(rec, *t_->v.cdf, pointCount_, lightCount_);
-    lightRefresh_ = false;
+    scan_.scanSegments(rec, *t_->v.cdf, rows, lightCount_);
   }
 }
 
@@ -336,14 +337,7 @@ void QGuiding::afterFrame(ecs::Registry& registry) {
   }
   if (added == 0) return;
   spawned_ += added;
-  uploadPoints(registry);
-  // The new points' tables hold the initial values; give them their CDFs now.
-  lightRefresh_ = true;
-  ctx_.submitAndWait([&](VkCommandBuffer cmd) {
-    gpu::PassRecorder rec(ctx_, cmd);
-    recordLearning(rec);
-    rec.finish();
-  });
+  uploadPoints(registry);  // their table rows already hold the initial distribution
 }
 
 GuidingStats QGuiding::stats() const {

@@ -53,6 +53,7 @@ class QGuiding {
   struct Tables;
   void allocate(uint32_t lightCount);
   void resetTables();
+  void recordTables(gpu::PassRecorder& recorder, uint32_t rows);  // update + CDFs of the first rows
   void uploadPoints(ecs::Registry& registry);
   void writeUniforms();
   void chooseRadii(const render::GpuScene& scene);
@@ -71,7 +72,6 @@ class QGuiding {
   bool needsPoints_ = true;
   uint32_t generation_ = 0;
   uint32_t lightFrame_ = 0;     // counts learning passes, for the light-value update interval
-  bool lightRefresh_ = true;    // light CDFs must be rebuilt at the next learning pass
 };
 
 }  // namespace qlight::guiding
