@@ -28,14 +28,9 @@ Buffer::Buffer(const Context& ctx, VkDeviceSize bytes, const std::string& name,
       use == MemoryUse::HostVisible
           ? VK_MEMORY_PROPERTY_HOST_VISIBLE_BIT | VK_MEMORY_PROPERTY_HOST_COHERENT_BIT
           : VK_MEMORY_PROPERTY_DEVICE_LOCAL_BIT;
-  uint32_t type = ctx.findMemoryType(req.memoryTypeBits, required);
-  VkMemoryAllocateInfo alloc{VK_STRUCTURE_TYPE_MEMORY_ALLOCATE_INFO};
-  alloc.allocationSize = req.size;
-  alloc.memoryTypeIndex = type;
-  VkDeviceMemory memory = VK_NULL_HANDLE;
-  QL_VK(vkAllocateMemory(device, &alloc, nullptr, &memory));
-  memory_ = Unique<VkDeviceMemory>(memory,
-                                   [device](VkDeviceMemory m) { vkFreeMemory(device, m, nullptr); });
+  uint32_t type = 0;
+  memory_ = ctx.allocate(req, required, &type);
+  VkDeviceMemory memory = memory_;
   QL_VK(vkBindBufferMemory(device, buffer, memory, 0));
 
   VkPhysicalDeviceMemoryProperties props;

@@ -301,6 +301,18 @@ uint32_t Context::findMemoryType(uint32_t typeBits, VkMemoryPropertyFlags requir
   throw std::runtime_error("no Vulkan memory type with the required properties");
 }
 
+Unique<VkDeviceMemory> Context::allocate(const VkMemoryRequirements& req,
+                                         VkMemoryPropertyFlags required, uint32_t* typeIndex) const {
+  VkMemoryAllocateInfo alloc{VK_STRUCTURE_TYPE_MEMORY_ALLOCATE_INFO};
+  alloc.allocationSize = req.size;
+  alloc.memoryTypeIndex = findMemoryType(req.memoryTypeBits, required);
+  if (typeIndex) *typeIndex = alloc.memoryTypeIndex;
+  VkDevice device = device_;
+  VkDeviceMemory memory = VK_NULL_HANDLE;
+  QL_VK(vkAllocateMemory(device, &alloc, nullptr, &memory));
+  return Unique<VkDeviceMemory>(memory, [device](VkDeviceMemory m) { vkFreeMemory(device, m, nullptr); });
+}
+
 void Context::submitAndWait(const std::function<void(VkCommandBuffer)>& record) const {
   VkCommandBufferAllocateInfo alloc{VK_STRUCTURE_TYPE_COMMAND_BUFFER_ALLOCATE_INFO};
   alloc.commandPool = oneShotPool_;

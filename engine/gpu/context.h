@@ -50,6 +50,9 @@ class Context {
 
   uint32_t findMemoryType(uint32_t typeBits, VkMemoryPropertyFlags required,
                           VkMemoryPropertyFlags preferred = 0) const;
+  // Allocates memory of the first type with `required` properties that fits.
+  Unique<VkDeviceMemory> allocate(const VkMemoryRequirements& requirements,
+                                  VkMemoryPropertyFlags required, uint32_t* typeIndex = nullptr) const;
 
   // Records with `record`, submits and waits (uploads, readbacks, tests).
   void submitAndWait(const std::function<void(VkCommandBuffer)>& record) const;

@@ -32,15 +32,8 @@ Image::Image(const Context& ctx, uint32_t width, uint32_t height, VkFormat forma
 
   VkMemoryRequirements req;
   vkGetImageMemoryRequirements(device, image, &req);
-  VkMemoryAllocateInfo alloc{VK_STRUCTURE_TYPE_MEMORY_ALLOCATE_INFO};
-  alloc.allocationSize = req.size;
-  alloc.memoryTypeIndex =
-      ctx.findMemoryType(req.memoryTypeBits, VK_MEMORY_PROPERTY_DEVICE_LOCAL_BIT);
-  VkDeviceMemory memory = VK_NULL_HANDLE;
-  QL_VK(vkAllocateMemory(device, &alloc, nullptr, &memory));
-  memory_ = Unique<VkDeviceMemory>(memory,
-                                   [device](VkDeviceMemory m) { vkFreeMemory(device, m, nullptr); });
-  QL_VK(vkBindImageMemory(device, image, memory, 0));
+  memory_ = ctx.allocate(req, VK_MEMORY_PROPERTY_DEVICE_LOCAL_BIT);
+  QL_VK(vkBindImageMemory(device, image, memory_, 0));
 
   VkImageViewCreateInfo viewInfo{VK_STRUCTURE_TYPE_IMAGE_VIEW_CREATE_INFO};
   viewInfo.image = image;

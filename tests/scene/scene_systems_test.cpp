@@ -9,17 +9,12 @@
 #include "engine/scene/gltf_loader.h"
 #include "engine/scene/instantiate.h"
 #include "engine/scene/procedural.h"
+#include "tests/scene/matrix_compare.h"
 #include "engine/scene/transforms.h"
 
 namespace qlight::scene {
 namespace {
 
-float maxDifference(const glm::mat4& a, const glm::mat4& b) {
-  float d = 0.0f;
-  for (int c = 0; c < 4; ++c)
-    for (int r = 0; r < 4; ++r) d = std::max(d, std::abs(a[c][r] - b[c][r]));
-  return d;
-}
 
 // root (mesh) -> arm (animated rotation about y) -> hand (mesh, light); plus a static node.
 SceneAsset armScene() {

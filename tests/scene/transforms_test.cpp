@@ -8,16 +8,11 @@
 #include <random>
 
 #include "engine/scene/procedural.h"
+#include "tests/scene/matrix_compare.h"
 
 namespace qlight::scene {
 namespace {
 
-float maxDifference(const glm::mat4& a, const glm::mat4& b) {
-  float d = 0.0f;
-  for (int c = 0; c < 4; ++c)
-    for (int r = 0; r < 4; ++r) d = std::max(d, std::abs(a[c][r] - b[c][r]));
-  return d;
-}
 
 TEST(Transforms, MatrixIsTranslationTimesRotationTimesScale) {
   LocalTransform local;
