@@ -20,6 +20,9 @@ void addRenderOptions(CLI::App& app, render::RenderSettings& s) {
       ->transform(CLI::CheckedTransformer(onOff, CLI::ignore_case));
   app.add_option("--exposure", s.exposure, "exposure multiplier for PNG and display")
       ->check(CLI::PositiveNumber);
+  app.add_option("--temporal-blend", s.temporalBlend,
+                 "animated scenes: weight kept of the accumulated image when things move (0: restart)")
+      ->check(CLI::Range(0.0, 0.99));
   std::map<std::string, render::Tonemap> tonemaps{{"aces", render::Tonemap::Aces},
                                                   {"clamp", render::Tonemap::Clamp}};
   app.add_option("--tonemap", s.tonemap, "aces or clamp (PNG and display only)")

@@ -66,10 +66,11 @@ int runHeadless(const DemoArgs& a, const CommonOptions& common) {
     float t = float(f) / a.fps;
     world.advance(t);
     if (world.moved()) {
-      // Moving lights change the image: accumulation restarts, while the
-      // learned distributions persist and follow the lights.
+      // Moving lights change the image: accumulation restarts (or fades, with
+      // temporal blending), while the learned distributions persist and follow the lights.
       gpuScene.update(world.draw());
-      tracer.resetAccumulation();
+      if (s.temporalBlend > 0.0f) tracer.fadeAccumulation(s.temporalBlend);
+      else tracer.resetAccumulation();
     }
     render::CameraView camera = path.at(t);
     auto frameStart = std::chrono::steady_clock::now();
@@ -140,6 +141,7 @@ std::function<int()> addDemoCommand(CLI::App& app, const CommonOptions& common) 
   cmd->add_flag("--headless", args->headless, "render frames to files even with a display");
   cmd->add_option("--exit-after-frames", args->exitAfterFrames, "window: close after this many frames (0: never)");
   cmd->add_option("--screenshot-at-exit", args->screenshotAtExit, "window: write the render as PNG on closing");
+  args->settings.temporalBlend = 0.7f;  // the demo keeps a fading history of animated frames
   addRenderOptions(*cmd, args->settings);
   addGuidingOptions(*cmd, args->guiding, args->guidingCli);
   return [cmd, args, &common]() -> int {

@@ -177,7 +177,9 @@ int WindowApp::run() {
     applySettings(target->extent);
     if (posed) {
       updateScenePose();
-      tracer_.resetAccumulation();  // moving lights and objects invalidate the image
+      // Moving lights and objects invalidate the image: restart, or fade the history.
+      if (wanted_.temporalBlend > 0.0f) tracer_.fadeAccumulation(wanted_.temporalBlend);
+      else tracer_.resetAccumulation();
     }
     recordFrame(*target);
     presenter_.endFrame(*target);

@@ -26,6 +26,7 @@ PathTracer::PathTracer(const gpu::Context& ctx, const RenderSettings& settings)
       trace_(ctx, "pt_trace"),
       end_(ctx, "pt_end"),
       queue_(ctx, "pt_queue"),
+      decay_(ctx, "accum_decay"),
       noGuiding_(ctx),
       frameUniforms_(ctx, sizeof(FrameUniforms), "frame.uniforms", 0, gpu::MemoryUse::HostVisible),
       stats_(ctx, shared::kStatCount * sizeof(uint32_t), "frame.stats"),
@@ -77,6 +78,13 @@ const gpu::ComputePipeline& PathTracer::shadeVariant(const GpuScene& scene,
   return *slot;
 }
 
+void PathTracer::fadeAccumulation(float factor) {
+  if (!(factor >= 0.0f && factor <= 1.0f)) throw std::invalid_argument("fade factor must be in [0, 1]");
+  if (factor == 0.0f) return resetAccumulation();
+  pendingFade_ *= factor;
+  accumulated_ = uint32_t(float(accumulated_) * factor);
+}
+
 void PathTracer::recordFrame(gpu::PassRecorder& rec, const GpuScene& scene,
                              const CameraView& camera, const GuidingBinder& guiding) {
   if (!cameraValid_ || !(camera == lastCamera_)) {
@@ -87,6 +95,11 @@ void PathTracer::recordFrame(gpu::PassRecorder& rec, const GpuScene& scene,
   if (clearPending_) {
     rec.clear("accumulate.clear", *accum_);
     clearPending_ = false;
+    pendingFade_ = 1.0f;
+  } else if (pendingFade_ < 1.0f) {
+    struct { float factor; uint32_t width, height, pad; } push{pendingFade_, settings_.width, settings_.height, 0};
+    rec.pass("accumulate.fade", decay_).write(0, *accum_).push(push).dispatchThreads(settings_.width, settings_.height);
+    pendingFade_ = 1.0f;
   }
   rec.fill("stats.clear", stats_, 0);
 

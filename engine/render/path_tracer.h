@@ -31,6 +31,9 @@ class PathTracer {
   void setSettings(const RenderSettings& settings);
   const RenderSettings& settings() const { return settings_; }
   void resetAccumulation();
+  // Keeps the accumulated samples but weights them by `factor` (0..1) before
+  // the next frame's: an exponentially fading history for animated scenes.
+  void fadeAccumulation(float factor);
   // The batch size alone does not change the image: accumulation goes on.
   void setSamplesPerFrame(uint32_t n) { settings_.samplesPerFrame = n; }
   uint32_t accumulatedSamples() const { return accumulated_; }
@@ -66,6 +69,8 @@ class PathTracer {
   CameraView lastCamera_;
   bool cameraValid_ = false;
   bool clearPending_ = true;
+  float pendingFade_ = 1.0f;
+  gpu::ComputePipeline decay_;
   uint32_t accumulated_ = 0;
   uint32_t sampleCounter_ = 0;  // seeds: never reused within one accumulation
 };

@@ -21,6 +21,9 @@ struct RenderSettings {
   Estimator estimator = Estimator::Mis;
   bool russianRoulette = true;
   float exposure = 1.0f;
+  // When lights or objects move: 0 restarts accumulation, k in (0, 1) keeps the
+  // accumulated samples weighted by k (temporal blending: less noise, some lag).
+  float temporalBlend = 0.0f;
   Tonemap tonemap = Tonemap::Aces;
 };
 
