@@ -44,7 +44,7 @@ QL_CHECK_SIZE(GuidingUniforms, 64);
 
 QL_CONST uint kNoCachePoint = 0xffffffffu;
 
-// Bindings of the guiding buffers in path_trace.comp (after the scene's).
+// Bindings of the guiding buffers in the path tracing passes (after the scene's).
 #define QL_BIND_GUIDING 14
 #define QL_BIND_CACHE_POINTS 15
 #define QL_BIND_GRID_BUCKETS 16

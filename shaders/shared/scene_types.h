@@ -139,7 +139,7 @@ QL_CONST uint kStatInvalidSamples = 5u; // NaN/Inf samples dropped (should stay 
 QL_CONST uint kStatCoveredVertices = 6u; // scattering vertices that found a cache point
 QL_CONST uint kStatCount = 8u;
 
-// Bindings of path_trace.comp.
+// Bindings of the path tracing passes (shaders/pt_*.comp).
 #define QL_BIND_BVH_NODES 0
 #define QL_BIND_BVH_TRIS 1
 #define QL_BIND_BVH_INSTANCES 2
