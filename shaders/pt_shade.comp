@@ -105,7 +105,8 @@ void main() {
       if ((st.flags & kPathEmitterHit) == 0u) st.vertices++;  // up to the first emitter reached (D&K)
       TangentFrame pf = point != kNoCachePoint ? pointFrame(point) : tf;
       float guideShare = kUseGuiding && guide && point != kNoCachePoint
-          ? guiding.selectProbability * (1.0 - bsdfSpecularProbability(bsdf, wo)) : 0.0;
+          ? guiding.selectProbability * (1.0 - bsdfSpecularProbability(bsdf, wo)) * pointConfidence(point)
+          : 0.0;
       vec3 p = offsetRayOrigin(s.position, s.geometricNormal);
 
       if (nee) {

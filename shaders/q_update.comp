@@ -13,12 +13,14 @@ layout(binding = 1, scalar) buffer Visits { uint visits[]; };
 layout(binding = 2, scalar) writeonly buffer Weights { float weights[]; };
 layout(binding = 3, scalar) buffer Sums { uint sums[]; };  // fixed point (lo, hi) pairs
 layout(binding = 4, scalar) buffer Counts { uint counts[]; };
+layout(binding = 5, scalar) buffer PointUpdates { uint pointUpdates[]; };  // per point (Q table only)
 layout(push_constant, scalar) uniform Push { TableUpdatePush pc; };
 
 void main() {
   uint e = gl_GlobalInvocationID.x;
   if (e >= pc.entries) return;
   uint m = counts[e];
+  if (m > 0u && pc.cosineWeights != 0u) atomicAdd(pointUpdates[e / pc.segmentLength], m);
   float sum = fixedSumToFloat(sums[2u * e], sums[2u * e + 1u]);
   float next = updatedQ(values[e], sum, m, visits[e], pc.alphaMin, pc.alphaMax, pc.floorValue);
   values[e] = next;

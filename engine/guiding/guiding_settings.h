@@ -22,6 +22,9 @@ struct GuidingSettings {
   // rare BSDF-sampled paths through low-Q directions carry fireflies.
   float selectProbability = 0.5f;
   float qFloor = 1e-4f;     // Q stays above this: every direction stays possible
+  // Updates per stratum before a point guides at the full share (fewer: BSDF
+  // sampling takes over in proportion); 0 trusts every point at once.
+  float confidenceUpdates = 4.0f;
   float initialQ = 1e-2f;
   uint32_t pointBudget = 16384;  // --points
   float rejectionMin = 0.0f;     // 0: from the budget and the scene's surface area

@@ -63,7 +63,7 @@ struct Table {
 }  // namespace
 
 struct QGuiding::Tables {
-  BufferPtr uniforms, points, gridBuckets, gridPoints, spawn, candidates;
+  BufferPtr uniforms, points, gridBuckets, gridPoints, spawn, candidates, pointUpdates;
   ViewPtr pointsView, gridBucketsView, gridPointsView;
   Table q, v;
   std::unique_ptr<PointAcceptor> acceptor;
@@ -111,6 +111,7 @@ void QGuiding::allocate(uint32_t lightCount) {
   t_->points = makeBuffer(ctx_, budget * sizeof(CachePoint), "guiding.points");
   t_->gridBuckets = makeBuffer(ctx_, (grid_.hashSize + 1ull) * 4, "guiding.gridBuckets");
   t_->gridPoints = makeBuffer(ctx_, budget * 4, "guiding.gridPoints");
+  t_->pointUpdates = makeBuffer(ctx_, budget * 4, "guiding.pointUpdates");
   t_->pointsView = std::make_unique<gpu::BufferView>(ctx_, *t_->points, VK_FORMAT_R32G32B32A32_SFLOAT);
   t_->gridBucketsView = std::make_unique<gpu::BufferView>(ctx_, *t_->gridBuckets, VK_FORMAT_R32_UINT);
   t_->gridPointsView = std::make_unique<gpu::BufferView>(ctx_, *t_->gridPoints, VK_FORMAT_R32_UINT);
@@ -134,6 +135,7 @@ void QGuiding::resetTables() {
   ctx_.submitAndWait([&](VkCommandBuffer cmd) {
     gpu::PassRecorder rec(ctx_, cmd);
     t_->q.recordReset(rec, settings_.initialQ);
+    rec.fill("guiding.reset", *t_->pointUpdates, 0);
     // Light values start at the floor: until a light has shown a contribution at
     // a point, NEE picks it by power (the mixture), not uniformly among all lights.
     t_->v.recordReset(rec, settings_.qFloor);
@@ -261,6 +263,7 @@ void QGuiding::writeUniforms() {
   u.spawnCapacity = kSpawnCapacity;
   u.alphaMin = settings_.alphaMin;
   u.alphaMax = settings_.alphaMax;
+  u.confidenceUpdates = settings_.confidenceUpdates;
   t_->uniforms->upload(ctx_, &u, sizeof(u));
 }
 
@@ -275,7 +278,8 @@ void QGuiding::bind(gpu::PassBuilder& pass) const {
       .write(QL_BIND_SPAWN, *t_->spawn)
       .read(QL_BIND_V_CDF, *t_->v.cdfView)
       .write(QL_BIND_V_SUM, *t_->v.sums)
-      .write(QL_BIND_V_COUNT, *t_->v.counts);
+      .write(QL_BIND_V_COUNT, *t_->v.counts)
+      .read(QL_BIND_POINT_UPDATES, *t_->pointUpdates);
 }
 
 render::GuidingBinder QGuiding::binder() const {
@@ -300,6 +304,7 @@ void QGuiding::recordTables(gpu::PassRecorder& rec, uint32_t rows) {
         .write(2, *table.cdf)
         .write(3, *table.sums)
         .write(4, *table.counts)
+        .write(5, *t_->pointUpdates)
         .push(push)
         .dispatchThreads(push.entries);
   };

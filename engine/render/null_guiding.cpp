@@ -35,7 +35,8 @@ void NullGuiding::bind(gpu::PassBuilder& pass) const {
       .write(QL_BIND_Q_COUNT, *writable_[1])
       .write(QL_BIND_SPAWN, *writable_[2])
       .write(QL_BIND_V_SUM, *writable_[3])
-      .write(QL_BIND_V_COUNT, *writable_[4]);
+      .write(QL_BIND_V_COUNT, *writable_[4])
+      .read(QL_BIND_POINT_UPDATES, *empty_);
 }
 
 }  // namespace qlight::render

@@ -15,6 +15,8 @@ layout(binding = QL_BIND_SPAWN, scalar) buffer Spawn { vec4 spawnEntries[]; };  
 layout(binding = QL_BIND_V_CDF) uniform samplerBuffer uVCdf;
 layout(binding = QL_BIND_V_SUM, scalar) buffer VSum { uint vSum[]; };  // (lo, hi) pairs
 layout(binding = QL_BIND_V_COUNT, scalar) buffer VCount { uint vCount[]; };
+layout(binding = QL_BIND_POINT_UPDATES, scalar) readonly buffer PointUpdates { uint pointUpdates[]; };
+
 
 GpuCachePoint cachePointAt(uint i) {
   vec4 a = texelFetch(uCachePoints, int(2u * i));
@@ -33,6 +35,13 @@ float vCdf(uint i) { return texelFetch(uVCdf, int(i)).x; }
 #include "shared/strata.h"
 
 uint strataCount() { return guiding.rows * guiding.cols; }
+
+// How far a point's learned distribution can be trusted: 0 without updates,
+// 1 after confidenceUpdates per stratum.
+float pointConfidence(uint point) {
+  if (guiding.confidenceUpdates <= 0.0) return 1.0;
+  return min(1.0, float(pointUpdates[point]) / (guiding.confidenceUpdates * float(strataCount())));
+}
 
 
 #define QL_POINT_AT(i) cachePointAt(i)

@@ -38,7 +38,9 @@ struct GuidingUniforms {
   uint spawnCapacity;     // slots in the spawn buffer (fixed slot per pixel group)
   float alphaMin;
   float alphaMax;
-  uint pad0;
+  // Updates per stratum a point needs before it guides at the full share: a
+  // point with fewer updates has an unreliable Q and samples mostly by the BSDF.
+  float confidenceUpdates;
 };
 QL_CHECK_SIZE(GuidingUniforms, 64);
 
@@ -56,6 +58,7 @@ QL_CONST uint kNoCachePoint = 0xffffffffu;
 #define QL_BIND_V_CDF 22
 #define QL_BIND_V_SUM 23
 #define QL_BIND_V_COUNT 24
+#define QL_BIND_POINT_UPDATES 30  // Q updates each point has received
 
 // Bucket of a grid cell in the hashed grid of cache points (CPU build and GPU
 // lookup must agree, so both use this).

@@ -40,7 +40,9 @@ TEST_F(QUpdateGpu, UpdateAndCdfMatchCpuReference) {
   sums[7] = shared::fixedSumToFloat(0xffffffffu, 0xffffffffu);
 
   gpu::Buffer bq(ctx(), n * 4, "q"), bv(ctx(), n * 4, "visits"), bc(ctx(), n * 4, "cdf"),
-      bs(ctx(), n * 8, "sums"), bn(ctx(), n * 4, "counts");
+      bs(ctx(), n * 8, "sums"), bn(ctx(), n * 4, "counts"), bp(ctx(), points * 4, "pointUpdates");
+  std::vector<uint32_t> noUpdates(points, 0);
+  bp.upload<uint32_t>(ctx(), noUpdates);
   bq.upload<float>(ctx(), q);
   bv.upload<uint32_t>(ctx(), visits);
   bs.upload<uint32_t>(ctx(), fixedSums);
@@ -50,7 +52,7 @@ TEST_F(QUpdateGpu, UpdateAndCdfMatchCpuReference) {
   ctx().submitAndWait([&](VkCommandBuffer cmd) {
     gpu::PassRecorder rec(ctx(), cmd);
     shared::TableUpdatePush push{n, strata, rows, cols, 1, aMin, aMax, qFloor};
-    rec.pass("q_update", update).write(0, bq).write(1, bv).write(2, bc).write(3, bs).write(4, bn)
+    rec.pass("q_update", update).write(0, bq).write(1, bv).write(2, bc).write(3, bs).write(4, bn).write(5, bp)
         .push(push).dispatchThreads(n);
     scan.scanSegments(rec, bc, points, strata);
     rec.finish();
@@ -60,7 +62,11 @@ TEST_F(QUpdateGpu, UpdateAndCdfMatchCpuReference) {
   auto gc = bc.read<float>(ctx());
   auto gs = bs.read<uint32_t>(ctx());
   auto gn = bn.read<uint32_t>(ctx());
+  auto gp = bp.read<uint32_t>(ctx());
   for (uint32_t p = 0; p < points; ++p) {
+    uint32_t pointTotal = 0;
+    for (uint32_t k = 0; k < strata; ++k) pointTotal += counts[p * strata + k];
+    ASSERT_EQ(gp[p], pointTotal) << "updates of point " << p;
     double cdf = 0;
     for (uint32_t k = 0; k < strata; ++k) {
       uint32_t e = p * strata + k;
