@@ -35,9 +35,13 @@ void parseStrata(const std::string& text, GuidingSettings& s) {
     int r = std::stoi(text.substr(0, x), &used);
     if (used != x) throw std::invalid_argument("");
     int c = std::stoi(text.substr(x + 1), &used);
-    if (used != text.size() - x - 1 || r <= 0 || c <= 0) throw std::invalid_argument("");
+    if (used != text.size() - x - 1) throw std::invalid_argument("");
+    if (r <= 0 || c <= 0)
+      throw std::domain_error("strata '" + text + "': rows and columns must be at least 1");
     s.rows = uint32_t(r);
     s.cols = uint32_t(c);
+  } catch (const std::domain_error& e) {
+    throw std::invalid_argument(e.what());
   } catch (const std::exception&) {
     throw std::invalid_argument("strata '" + text + "' is not of the form RxC, e.g. 8x8");
   }
