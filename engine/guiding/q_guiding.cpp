@@ -93,15 +93,22 @@ void QGuiding::setSettings(const GuidingSettings& s) {
   if (pointsChanged) {
     needsPoints_ = true;
   } else if (tablesChanged) {
-    allocate(lightCount_);
+    allocateTables(lightCount_);
     resetTables();
   }
   writeUniforms();
 }
 
+// The learned tables alone: a strata change keeps the points and their grid.
+void QGuiding::allocateTables(uint32_t lightCount) {
+  const uint64_t budget = settings_.pointBudget;
+  t_->q.allocate(ctx_, budget * settings_.strata(), "guiding.q");
+  lightCount_ = lightCount;
+  t_->v.allocate(ctx_, std::max<uint64_t>(budget * lightCount, 1), "guiding.v");
+}
+
 void QGuiding::allocate(uint32_t lightCount) {
   const uint64_t budget = settings_.pointBudget;
-  const uint64_t strata = settings_.strata();
   grid_.hashSize = nextPowerOfTwo(std::max<uint32_t>(2 * settings_.pointBudget, 1024));
   t_->pointsView.reset();
   t_->gridBucketsView.reset();
@@ -118,10 +125,8 @@ void QGuiding::allocate(uint32_t lightCount) {
   t_->spawn = makeBuffer(ctx_, kSpawnCapacity * 32ull, "guiding.spawn");
   t_->candidateCapacity = settings_.dartPaths * settings_.dartBounces;
   t_->candidates = makeBuffer(ctx_, t_->candidateCapacity * 32ull, "guiding.candidates");
-  t_->q.allocate(ctx_, budget * strata, "guiding.q");
-  lightCount_ = lightCount;
-  t_->v.allocate(ctx_, std::max<uint64_t>(budget * lightCount, 1), "guiding.v");
-  pointCount_ = std::min<uint32_t>(pointCount_, settings_.pointBudget);
+  allocateTables(lightCount);
+  pointCount_ = 0;  // the point buffers are new: generatePoints fills them
   grid_.buckets.assign(grid_.hashSize + 1, 0);
   t_->gridBuckets->upload(ctx_, grid_.buckets.data(), grid_.buckets.size() * 4);
   std::vector<uint8_t> zeros(kSpawnCapacity * 32ull, 0);

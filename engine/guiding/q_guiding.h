@@ -51,7 +51,8 @@ class QGuiding {
 
  private:
   struct Tables;
-  void allocate(uint32_t lightCount);
+  void allocate(uint32_t lightCount);  // everything (point buffers emptied)
+  void allocateTables(uint32_t lightCount);
   void resetTables();
   void recordTables(gpu::PassRecorder& recorder, uint32_t rows);  // update + CDFs of the first rows
   void uploadPoints(ecs::Registry& registry);
