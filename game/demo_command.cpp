@@ -8,13 +8,9 @@
 #include <filesystem>
 #include <memory>
 
-#include "engine/gpu/pass_recorder.h"
-#include "engine/render/gpu_scene.h"
-#include "engine/render/path_tracer.h"
-#include "engine/guiding/q_guiding.h"
-#include "engine/session/scene_world.h"
-#include "engine/session/stats_json.h"
 #include "engine/scene/gltf_loader.h"
+#include "engine/session/renderer.h"
+#include "engine/session/stats_json.h"
 #include "game/context_setup.h"
 #include "game/demo_window.h"
 #include "game/flythrough.h"
@@ -42,80 +38,44 @@ bool displayAvailable() {
 int runHeadless(const DemoArgs& a, const CommonOptions& common) {
   scene::SceneAsset asset = scene::loadGltf(resolveScene(a.scene));
   auto ctx = createContext(common, false);
-  render::RenderSettings s = a.settings;
-  session::SceneWorld world(asset, float(s.width) / float(s.height));
-  render::GpuScene gpuScene(*ctx, asset);
-  gpuScene.update(world.draw());
-  render::PathTracer tracer(*ctx, s);
-  gpu::GpuTimer timer(*ctx);
-  Flythrough path{world.camera(), asset.bounds.radius(), a.moveSeconds};
-  std::unique_ptr<guiding::QGuiding> guide;
-  if (a.guiding.enabled) {
-    guide = std::make_unique<guiding::QGuiding>(*ctx, a.guiding);
-    guide->generatePoints(world.registry(), gpuScene);
-  }
+  const render::RenderSettings& s = a.settings;
+  session::Renderer renderer(*ctx, asset, s, a.guiding);
+  Flythrough path{renderer.world().camera(), asset.bounds.radius(), a.moveSeconds};
 
   fs::create_directories(a.outDir);
   nlohmann::json frames = nlohmann::json::array();
-  render::RenderStats total;
-  total.width = s.width;
-  total.height = s.height;
-  total.device = ctx->deviceName();
+  session::RenderStats total = renderer.newStats();
   auto start = std::chrono::steady_clock::now();
   for (uint32_t f = 0; f < a.frames; ++f) {
     float t = float(f) / a.fps;
-    world.advance(t);
-    if (world.moved()) {
-      // Moving lights change the image: accumulation restarts (or fades, with
-      // temporal blending), while the learned distributions persist and follow the lights.
-      gpuScene.update(world.draw());
-      if (s.temporalBlend > 0.0f) tracer.fadeAccumulation(s.temporalBlend);
-      else tracer.resetAccumulation();
-    }
-    render::CameraView camera = path.at(t);
     auto frameStart = std::chrono::steady_clock::now();
-    ctx->submitAndWait([&](VkCommandBuffer cmd) {
-      timer.reset(cmd);
-      gpu::PassRecorder rec(*ctx, cmd, &timer);
-      tracer.recordFrame(rec, gpuScene, camera, guide ? guide->binder() : render::GuidingBinder{});
-      if (guide) guide->recordLearning(rec);
-      rec.finish();
-    });
-    if (guide) guide->afterFrame(world.registry());
+    session::FrameResult r = renderer.renderFrame(t, path.at(t));
     double frameSeconds =
         std::chrono::duration<double>(std::chrono::steady_clock::now() - frameStart).count();
-    render::FrameCounters c = tracer.collectCounters();
-    auto gpuMs = timer.collect(*ctx);
-    total.counters += c;
-    for (auto& [name, ms] : gpuMs) total.gpuMs[name] += ms;
-    ++total.frames;
-    total.spp += s.samplesPerFrame;
+    total.add(r);
     frames.push_back({{"frame", f},
                       {"time", t},
                       {"seconds", frameSeconds},
-                      {"accumulated_spp", tracer.accumulatedSamples()},
-                      {"rays", c.rays},
-                      {"emitter_hit_share", double(c.emitterHits) / double(std::max<uint64_t>(c.paths, 1))},
-                      {"mean_path_length", double(c.pathVertices) / double(std::max<uint64_t>(c.paths, 1))},
-                      {"gpu_ms", gpuMs}});
+                      {"accumulated_spp", renderer.tracer().accumulatedSamples()},
+                      {"rays", r.counters.rays},
+                      {"emitter_hit_share", r.emitterHitShare()},
+                      {"mean_path_length", r.meanPathLength()},
+                      {"gpu_ms", r.gpuMs}});
     bool last = f + 1 == a.frames;
     if (last || (a.saveEvery > 0 && f % a.saveEvery == 0)) {
       char name[64];
       std::snprintf(name, sizeof(name), "frame_%04u.png", f);
-      render::writeImage(fs::path(a.outDir) / name, tracer.readImage(), s.exposure, s.tonemap);
+      render::writeImage(fs::path(a.outDir) / name, renderer.tracer().readImage(), s.exposure, s.tonemap);
     }
   }
   total.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-  total.lights = gpuScene.lightCount();
-  total.fallbackSky = gpuScene.usesFallbackSky();
-  total.guided = bool(guide);
-  if (guide) total.guidingStats = guide->stats();
-  nlohmann::json stats = render::statsToJson(total);
+  if (renderer.guide()) total.guidingStats = renderer.guide()->stats();
+  nlohmann::json stats = session::statsToJson(total);
   stats["scene"] = resolveScene(a.scene);
   stats["mode"] = "headless";
   stats["frames_detail"] = frames;
-  render::writeJson(fs::path(a.outDir) / "stats.json", stats);
-  render::writeImage(fs::path(a.outDir) / "final.png", tracer.readImage(), s.exposure, s.tonemap);
+  session::writeJson(fs::path(a.outDir) / "stats.json", stats);
+  render::writeImage(fs::path(a.outDir) / "final.png", renderer.tracer().readImage(), s.exposure, s.tonemap);
   std::printf("qlight demo: %u frames of %s at %ux%u in %.2f s (%.1f ms/frame, %.2f Mrays/s); "
               "images and stats.json in %s\n",
               a.frames, a.scene.c_str(), s.width, s.height, total.seconds,

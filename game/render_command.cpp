@@ -31,9 +31,9 @@ int runRender(RenderArgs a, const CommonOptions& common) {
   auto ctx = createContext(common, /*windowed=*/false);
   render::RenderSettings s = a.settings;
   s.samplesPerFrame = std::min(a.batch, a.spp);
-  render::OfflineRender result = render::renderScene(*ctx, asset, s, a.spp, a.time, a.guiding);
+  session::OfflineRender result = session::renderScene(*ctx, asset, s, a.spp, a.time, a.guiding);
   render::writeImage(a.out, result.image, s.exposure, s.tonemap);
-  nlohmann::json stats = render::statsToJson(result.stats);
+  nlohmann::json stats = session::statsToJson(result.stats);
   stats["scene"] = a.scene;
   stats["time"] = a.time;
   stats["max_depth"] = s.maxDepth;
@@ -47,7 +47,7 @@ int runRender(RenderArgs a, const CommonOptions& common) {
     stats["alpha_max"] = a.guiding.alphaMax;
     stats["light_learning"] = a.guiding.lightLearning;
   }
-  if (!a.statsJson.empty()) render::writeJson(a.statsJson, stats);
+  if (!a.statsJson.empty()) session::writeJson(a.statsJson, stats);
   std::printf("qlight: %s -> %s: %ux%u, %u spp in %.2f s, %.2f Mrays/s\n", a.scene.c_str(),
               a.out.c_str(), s.width, s.height, result.stats.spp, result.stats.seconds,
               stats["rays_per_second"].get<double>() * 1e-6);

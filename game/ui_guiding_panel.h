@@ -3,7 +3,7 @@
 // light learning), and what it has learned so far.
 #pragma once
 #include "engine/guiding/guiding_settings.h"
-#include "engine/guiding/q_guiding.h"
+#include "engine/guiding/q_guide.h"
 
 namespace qlight::game {
 

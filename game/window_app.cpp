@@ -46,54 +46,50 @@ WindowApp::WindowApp(const DemoArgs& args, const CommonOptions& common)
                          [this](VkInstance instance) { return window_.createSurface(instance); })),
       presenter_(*ctx_, window_),
       imgui_(*ctx_, window_, presenter_),
-      world_(asset_, float(args.windowWidth) / float(std::max(args.windowHeight, 1u))),
-      gpuScene_(*ctx_, asset_),
       wanted_(initialSettings(args)),
       renderScale_(std::clamp(args.renderScale, 0.1f, 1.0f)),
-      tracer_(*ctx_, wanted_),
+      renderer_(*ctx_, asset_, wanted_, args.guiding,
+                float(args.windowWidth) / float(std::max(args.windowHeight, 1u))),
       display_(*ctx_),
       guidingWanted_(args.guiding),
-      timer_(*ctx_),
       input_(window_.handle()) {
   clock_.duration = asset_.animationDuration();
-  updateScenePose();
   resetCamera();
-  guiding_ = std::make_unique<guiding::QGuiding>(*ctx_, guidingWanted_);
-  guiding_->generatePoints(world_.registry(), gpuScene_);
-}
-
-// New guiding settings apply at once: strata changes reset the tables, the
-// rest takes effect in the next frame. Guiding never biases the image, so
-// accumulation goes on.
-void WindowApp::applyGuiding(bool regenerate) {
-  guiding_->setSettings(guidingWanted_);
-  if (regenerate || guiding_->needsPoints()) guiding_->generatePoints(world_.registry(), gpuScene_);
+  registerDisplay();
 }
 
 WindowApp::~WindowApp() { vkDeviceWaitIdle(ctx_->device()); }
 
-float WindowApp::renderAspect() const {
-  return float(tracer_.settings().width) / float(tracer_.settings().height);
-}
-
-void WindowApp::updateScenePose() {
-  world_.advance(clock_.time);  // animation -> transforms -> extract, by the scheduler
-  gpuScene_.update(world_.draw());
+void WindowApp::registerDisplay() {
+  renderer_.scheduler()
+      .add("display")
+      .phase(ecs::Phase::Present)
+      .reads<render::PathTracer, session::FrameRecording>()
+      .writes<ui::DisplayPass>()
+      .run([this](ecs::Registry& r) {
+        ui::DisplaySettings display;
+        display.exposure = wanted_.exposure;
+        display.tonemap = wanted_.tonemap == render::Tonemap::Aces ? shared::kTonemapAces
+                                                                   : shared::kTonemapClamp;
+        display.encodeSrgb = !presenter_.swapchain().encodesSrgb();
+        display_.record(*r.resource<session::FrameRecording>().recorder,
+                        renderer_.tracer().accumulation(), display);
+      });
 }
 
 void WindowApp::resetCamera() {
-  render::CameraView start = world_.camera();
+  render::CameraView start = renderer_.world().camera();
   // Half the scene's radius per second crosses a room in a few seconds.
   camera_.reset(start, 0.5f * std::max(asset_.bounds.radius(), 1e-3f));
 }
 
 void WindowApp::collectPreviousFrame(double seconds) {
+  session::FrameResult frame = renderer_.collect();  // and new points where paths found none
   FrameSample sample;
   sample.seconds = seconds;
-  sample.counters = tracer_.collectCounters();
-  sample.gpuMs = timer_.collect(*ctx_);
+  sample.counters = frame.counters;
+  sample.gpuMs = std::move(frame.gpuMs);
   stats_.add(sample);
-  guiding_->afterFrame(world_.registry());  // new points where camera paths found none
 }
 
 void WindowApp::handleActions(const WindowActions& a) {
@@ -105,35 +101,30 @@ void WindowApp::handleActions(const WindowActions& a) {
 }
 
 void WindowApp::applySettings(VkExtent2D extent) {
+  render::PathTracer& tracer = renderer_.tracer();
   wanted_.width = std::max(1u, uint32_t(std::lround(extent.width * renderScale_)));
   wanted_.height = std::max(1u, uint32_t(std::lround(extent.height * renderScale_)));
-  if (tracingDiffers(wanted_, tracer_.settings())) {
-    tracer_.setSettings(wanted_);  // restarts accumulation (reallocates on a new size)
-  } else if (wanted_.samplesPerFrame != tracer_.settings().samplesPerFrame) {
-    tracer_.setSamplesPerFrame(wanted_.samplesPerFrame);  // the image stays valid
+  if (tracingDiffers(wanted_, tracer.settings())) {
+    tracer.setSettings(wanted_);  // restarts accumulation (reallocates on a new size)
+    return;
   }
+  // These leave the accumulated image valid.
+  if (wanted_.samplesPerFrame != tracer.settings().samplesPerFrame)
+    tracer.setSamplesPerFrame(wanted_.samplesPerFrame);
+  if (wanted_.temporalBlend != tracer.settings().temporalBlend)
+    tracer.setTemporalBlend(wanted_.temporalBlend);
 }
 
 void WindowApp::recordFrame(const ui::PresentTarget& target) {
   VkCommandBuffer cmd = target.cmd;
-  timer_.reset(cmd);
-  gpu::PassRecorder recorder(*ctx_, cmd, &timer_);
-  tracer_.recordFrame(recorder, gpuScene_, camera_.view(), guiding_->binder());
-  guiding_->recordLearning(recorder);
-  ui::DisplaySettings display;
-  display.exposure = wanted_.exposure;
-  display.tonemap =
-      wanted_.tonemap == render::Tonemap::Aces ? shared::kTonemapAces : shared::kTonemapClamp;
-  display.encodeSrgb = !presenter_.swapchain().encodesSrgb();
-  display_.record(recorder, tracer_.accumulation(), display);
-  recorder.finish();
-
-  timer_.begin(cmd, "present.blit");
+  renderer_.record(cmd);  // trace, learn, present (the display pass)
+  gpu::GpuTimer& timer = renderer_.timer();
+  timer.begin(cmd, "present.blit");
   ui::recordBlitToSwapchain(cmd, display_.output(), target.image, target.extent, VK_FILTER_LINEAR);
-  timer_.end(cmd);
-  timer_.begin(cmd, "imgui");
+  timer.end(cmd);
+  timer.begin(cmd, "imgui");
   imgui_.render(target, presenter_.overlayRenderPass());
-  timer_.end(cmd);
+  timer.end(cmd);
 }
 
 int WindowApp::run() {
@@ -159,35 +150,34 @@ int WindowApp::run() {
         input_.read(imgui_.wantsMouse(), imgui_.wantsKeyboard(), ImGui::GetIO().MouseWheel);
     handleActions(input.actions);
     camera_.update(input.camera, step);
-    bool posed = clock_.advance(step);
+    clock_.advance(step);
+    const render::PathTracer& tracer = renderer_.tracer();
     if (uiVisible_) {
       StatsView view{&stats_,
-                     tracer_.accumulatedSamples(),
-                     tracer_.settings().width,
-                     tracer_.settings().height,
+                     tracer.accumulatedSamples(),
+                     tracer.settings().width,
+                     tracer.settings().height,
                      ctx_->deviceName(),
                      ctx_->deviceName().find("llvmpipe") == std::string::npos};
       PanelChanges changes = drawQlightPanel(view, wanted_, renderScale_, clock_, camera_, [&] {
-        GuidingPanelResult g = drawGuidingSection(guidingWanted_, guiding_->stats());
-        if (g.changed || g.regenerate) applyGuiding(g.regenerate);
+        guiding::GuidingStats learned = renderer_.guide() ? renderer_.guide()->stats() : guiding::GuidingStats{};
+        GuidingPanelResult g = drawGuidingSection(guidingWanted_, learned);
+        // Strata changes reset the tables, the rest applies from the next frame; guiding
+        // never biases the image, so accumulation goes on.
+        if (g.changed || g.regenerate) renderer_.setGuiding(guidingWanted_, g.regenerate);
       });
-      posed |= changes.scenePose;
       if (changes.resetCamera) resetCamera();
     }
     applySettings(target->extent);
-    if (posed) {
-      updateScenePose();
-      // Moving lights and objects invalidate the image: restart, or fade the history.
-      if (wanted_.temporalBlend > 0.0f) tracer_.fadeAccumulation(wanted_.temporalBlend);
-      else tracer_.resetAccumulation();
-    }
+    // Simulate, extract, upload: a moved light or object restarts or fades the image.
+    renderer_.update(clock_.time, camera_.view());
     recordFrame(*target);
     presenter_.endFrame(*target);
     frameInFlight_ = true;
     ++frames;
 
     if (screenshotPending_) {
-      writeScreenshot(tracer_, nextScreenshotPath(args_.outDir), wanted_.exposure, wanted_.tonemap);
+      writeScreenshot(renderer_.tracer(), nextScreenshotPath(args_.outDir), wanted_.exposure, wanted_.tonemap);
       screenshotPending_ = false;
     }
     if (args_.exitAfterFrames && frames >= args_.exitAfterFrames) break;
@@ -196,10 +186,10 @@ int WindowApp::run() {
   double seconds = std::chrono::duration<double>(Clock::now() - start).count();
   std::printf("qlight demo: %u frames in a %ux%u window (render %ux%u) in %.2f s, %.1f ms/frame\n",
               frames, presenter_.swapchain().extent().width, presenter_.swapchain().extent().height,
-              tracer_.settings().width, tracer_.settings().height, seconds,
+              renderer_.tracer().settings().width, renderer_.tracer().settings().height, seconds,
               1e3 * seconds / std::max(frames, 1u));
   if (!args_.screenshotAtExit.empty())
-    writeScreenshot(tracer_, args_.screenshotAtExit, wanted_.exposure, wanted_.tonemap);
+    writeScreenshot(renderer_.tracer(), args_.screenshotAtExit, wanted_.exposure, wanted_.tonemap);
   return finishContext(*ctx_);
 }
 

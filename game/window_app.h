@@ -6,12 +6,8 @@
 #include <memory>
 
 #include "engine/gpu/context.h"
-#include "engine/gpu/gpu_timer.h"
-#include "engine/render/gpu_scene.h"
-#include "engine/guiding/q_guiding.h"
-#include "engine/render/path_tracer.h"
-#include "engine/session/scene_world.h"
 #include "engine/scene/scene_asset.h"
+#include "engine/session/renderer.h"
 #include "engine/ui/display_pass.h"
 #include "engine/ui/glfw_window.h"
 #include "engine/ui/imgui_layer.h"
@@ -41,11 +37,9 @@ class WindowApp {
   // The tracer follows the edited settings and the window size (restarting
   // accumulation when what it computes changes).
   void applySettings(VkExtent2D windowExtent);
-  void updateScenePose();  // uploads the scene posed at clock_.time
   void recordFrame(const ui::PresentTarget& target);
   void resetCamera();
-  void applyGuiding(bool regenerate);
-  float renderAspect() const;
+  void registerDisplay();  // the present phase's tonemap pass
 
   DemoArgs args_;
   scene::SceneAsset asset_;
@@ -53,15 +47,11 @@ class WindowApp {
   std::unique_ptr<gpu::Context> ctx_;
   ui::Presenter presenter_;
   ui::ImGuiLayer imgui_;
-  session::SceneWorld world_;  // the scene's entities and the cache points
-  render::GpuScene gpuScene_;
   render::RenderSettings wanted_;  // what the panel edits; the tracer follows
   float renderScale_;
-  render::PathTracer tracer_;
+  session::Renderer renderer_;  // the frame: scene entities, cache points, tracer, guide
   ui::DisplayPass display_;
   guiding::GuidingSettings guidingWanted_;
-  std::unique_ptr<guiding::QGuiding> guiding_;
-  gpu::GpuTimer timer_;
   InputReader input_;
   FreeCamera camera_;
   SceneClock clock_;

@@ -7,6 +7,18 @@
 
 namespace qlight::ecs {
 
+const char* phaseName(Phase phase) {
+  static const char* const names[kPhaseCount] = {"simulate", "extract", "upload",
+                                                 "trace",    "learn",   "present"};
+  return names[size_t(phase)];
+}
+
+Scheduler::SystemBuilder& Scheduler::SystemBuilder::phase(Phase phase) {
+  scheduler_->systems_[index_].phase = phase;
+  scheduler_->compiled_ = false;
+  return *this;
+}
+
 Scheduler::SystemBuilder& Scheduler::SystemBuilder::run(SystemFn fn) {
   scheduler_->systems_[index_].fn = std::move(fn);
   return *this;
@@ -45,6 +57,7 @@ bool Scheduler::reads(const System& s, TypeId type) const {
 }
 
 const std::string* Scheduler::dependency(size_t from, size_t to) const {
+  if (systems_[from].phase != systems_[to].phase) return nullptr;  // phases order those
   for (const Access& a : systems_[from].accesses) {
     if (!a.write) continue;
     if (reads(systems_[to], a.type)) return &a.typeName;                // producer before consumer
@@ -67,23 +80,26 @@ void Scheduler::compile() {
       }
     }
   }
-  // Kahn's algorithm, always taking the earliest-registered ready system: a stable order.
+  // Kahn's algorithm, always taking the ready system of the earliest phase, then the
+  // earliest registered: a stable order. Dependencies stay within a phase, so a phase's
+  // systems are all placed before any of the next phase's.
+  using Key = std::pair<Phase, size_t>;
   std::vector<size_t> waiting(n);
-  std::priority_queue<size_t, std::vector<size_t>, std::greater<>> ready;
+  std::priority_queue<Key, std::vector<Key>, std::greater<>> ready;
   for (size_t v = 0; v < n; ++v) {
     waiting[v] = preds[v].size();
-    if (waiting[v] == 0) ready.push(v);
+    if (waiting[v] == 0) ready.push({systems_[v].phase, v});
   }
   std::vector<size_t> order, levelOf(n, 0);
   std::vector<bool> placed(n, false);
   while (!ready.empty()) {
-    const size_t u = ready.top();
+    const size_t u = ready.top().second;
     ready.pop();
     order.push_back(u);
     placed[u] = true;
     for (size_t p : preds[u]) levelOf[u] = std::max(levelOf[u], levelOf[p] + 1);
     for (size_t v : succs[u]) {
-      if (--waiting[v] == 0) ready.push(v);
+      if (--waiting[v] == 0) ready.push({systems_[v].phase, v});
     }
   }
   if (order.size() != n) throwCycle(preds, placed);
@@ -138,16 +154,25 @@ std::vector<std::vector<std::string>> Scheduler::levels() const {
   return result;
 }
 
+void Scheduler::runEntry(Registry& registry, size_t entry) {
+  const auto start = std::chrono::steady_clock::now();
+  systems_[order_[entry]].fn(registry);
+  if (!registry.deferred().empty()) registry.flush();
+  timingsMs_[entry] =
+      std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
+}
+
 void Scheduler::runFrame(Registry& registry) {
   if (!compiled_) compile();
   timingsMs_.assign(order_.size(), 0.0);
-  for (size_t i = 0; i < order_.size(); ++i) {
-    const auto start = std::chrono::steady_clock::now();
-    systems_[order_[i]].fn(registry);
-    if (!registry.deferred().empty()) registry.flush();
-    timingsMs_[i] =
-        std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
-  }
+  for (size_t i = 0; i < order_.size(); ++i) runEntry(registry, i);
+}
+
+void Scheduler::runPhase(Registry& registry, Phase phase) {
+  if (!compiled_) compile();
+  timingsMs_.resize(order_.size(), 0.0);
+  for (size_t i = 0; i < order_.size(); ++i)
+    if (systems_[order_[i]].phase == phase) runEntry(registry, i);
 }
 
 }  // namespace qlight::ecs

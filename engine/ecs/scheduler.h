@@ -2,10 +2,14 @@
 //
 //   scheduler.add("transforms").reads<LocalTransform>().writes<WorldTransform>().run(fn);
 //
-// compile() puts every writer of T before every pure reader of T (producer before consumer),
-// whatever the registration order; writers of the same T, and systems with no dependency
-// between them, keep registration order. A dependency cycle throws std::runtime_error naming
-// the systems on it. Systems in one level() share no written type, so could run in parallel.
+// Every system belongs to one of the frame's fixed phases (as flecs' builtin phases), which run
+// in order: simulate, extract, upload, trace, learn, present. Within a phase, compile() puts
+// every writer of T before every pure reader of T (producer before consumer), whatever the
+// registration order; writers of the same T, and systems with no dependency between them, keep
+// registration order. Across phases only the phase order counts (a later phase's writes are
+// read by an earlier one in the next frame). A dependency cycle throws std::runtime_error
+// naming the systems on it. Systems in one level() share no written type, so could run in
+// parallel.
 #pragma once
 
 #include <functional>
@@ -18,6 +22,13 @@
 #include "engine/ecs/type_id.h"
 
 namespace qlight::ecs {
+
+// The frame's phases in run order. CPU systems simulate (animation, transforms) and extract
+// what the renderer draws; upload moves changed data to the GPU; trace, learn and present
+// systems record GPU passes (path tracing, the guide's learning, display).
+enum class Phase : uint8_t { Simulate, Extract, Upload, Trace, Learn, Present };
+inline constexpr size_t kPhaseCount = 6;
+const char* phaseName(Phase phase);
 
 class Scheduler {
  public:
@@ -42,6 +53,8 @@ class Scheduler {
       (scheduler_->declare(index_, typeId<T>(), typeName<T>(), !std::is_const_v<T>), ...);
       return *this;
     }
+    // The phase the system runs in (default: simulate).
+    SystemBuilder& phase(Phase phase);
     SystemBuilder& run(SystemFn fn);
 
    private:
@@ -59,6 +72,8 @@ class Scheduler {
   // Runs every system once in compiled order (compiling first if needed), flushing the
   // registry's deferred commands after each system so the next one sees its changes.
   void runFrame(Registry& registry);
+  // Runs the systems of one phase in compiled order (compiling first if needed).
+  void runPhase(Registry& registry, Phase phase);
 
   // System names in run order; levels() groups them by dependency depth. Compile first.
   const std::vector<std::string>& order() const;
@@ -77,7 +92,9 @@ class Scheduler {
     std::string name;
     std::vector<Access> accesses;
     SystemFn fn;
+    Phase phase = Phase::Simulate;
   };
+  void runEntry(Registry& registry, size_t entry);  // order_[entry], timed
 
   void declare(size_t system, TypeId type, std::string_view name, bool write);
   bool writes(const System& s, TypeId type) const;

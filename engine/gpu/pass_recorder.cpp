@@ -202,11 +202,12 @@ void PassRecorder::recordDispatch(PassBuilder& b, const Buffer* indirect, VkDevi
   if (timer_) timer_->end(cmd_);
 }
 
-void PassRecorder::fill(const std::string& name, const Buffer& buffer, uint32_t value) {
+void PassRecorder::fill(const std::string& name, const Buffer& buffer, uint32_t value,
+                        VkDeviceSize offset, VkDeviceSize size) {
   synchronize(name, {{uint64_t((const void*)buffer.handle()), &buffer.name(), Access::Write,
                       kTransfer, VK_ACCESS_2_TRANSFER_WRITE_BIT}});
   if (timer_) timer_->begin(cmd_, name);
-  vkCmdFillBuffer(cmd_, buffer.handle(), 0, VK_WHOLE_SIZE, value);
+  vkCmdFillBuffer(cmd_, buffer.handle(), offset, size, value);
   if (timer_) timer_->end(cmd_);
 }
 

@@ -77,7 +77,9 @@ class PassRecorder {
     return PassBuilder(this, std::move(name), &pipeline);
   }
   // Transfer passes, declared the same way.
-  void fill(const std::string& name, const Buffer& buffer, uint32_t value);
+  // Fills `size` bytes from `offset` (multiples of 4; the whole buffer by default).
+  void fill(const std::string& name, const Buffer& buffer, uint32_t value, VkDeviceSize offset = 0,
+            VkDeviceSize size = VK_WHOLE_SIZE);
   void copy(const std::string& name, const Buffer& src, const Buffer& dst, VkDeviceSize bytes);
   void clear(const std::string& name, const Image& image);
   // Makes every write so far visible to the host and to later submissions.

@@ -16,9 +16,12 @@ thread_local const uint32_t* tGridPoints = nullptr;
 
 namespace qlight::guiding {
 
-PointGrid buildPointGrid(std::span<const CachePoint> points, float cellSize, uint32_t hashSize) {
+PointGrid buildPointGrid(std::span<const CachePoint> points, float cellSize, uint32_t hashSize,
+                         std::span<const uint32_t> ids) {
   if (hashSize == 0 || (hashSize & (hashSize - 1)) != 0)
     throw std::invalid_argument("grid hash size must be a power of two");
+  if (!ids.empty() && ids.size() != points.size())
+    throw std::invalid_argument("grid ids must match the points");
   PointGrid g;
   g.cellSize = cellSize;
   g.hashSize = hashSize;
@@ -32,7 +35,7 @@ PointGrid buildPointGrid(std::span<const CachePoint> points, float cellSize, uin
   for (uint32_t b = 0; b < hashSize; ++b) g.buckets[b + 1] += g.buckets[b];
   g.points.resize(points.size());
   std::vector<uint32_t> cursor(g.buckets.begin(), g.buckets.end() - 1);
-  for (size_t i = 0; i < points.size(); ++i) g.points[cursor[bucketOf[i]]++] = uint32_t(i);
+  for (size_t i = 0; i < points.size(); ++i) g.points[cursor[bucketOf[i]]++] = ids.empty() ? uint32_t(i) : ids[i];
   return g;
 }
 

@@ -16,9 +16,13 @@ struct PointGrid {
   std::vector<uint32_t> points;
 };
 
-PointGrid buildPointGrid(std::span<const CachePoint> points, float cellSize, uint32_t hashSize);
+// The grid's entries are ids[i] for points[i] when ids are given (the points' table slots),
+// else the index i.
+PointGrid buildPointGrid(std::span<const CachePoint> points, float cellSize, uint32_t hashSize,
+                         std::span<const uint32_t> ids = {});
 
-// The same search as guiding.glsl's findCachePoint (tests compare against brute force).
+// The same search as guiding.glsl's findCachePoint (tests compare against brute force);
+// `points` indexed by the grid's entries.
 uint32_t findNearestPoint(const PointGrid& grid, std::span<const CachePoint> points,
                           const glm::vec3& p, const glm::vec3& n, float searchRadius,
                           float normalCosine);

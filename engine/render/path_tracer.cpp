@@ -27,7 +27,6 @@ PathTracer::PathTracer(const gpu::Context& ctx, const RenderSettings& settings)
       end_(ctx, "pt_end"),
       queue_(ctx, "pt_queue"),
       decay_(ctx, "accum_decay"),
-      noGuiding_(ctx),
       frameUniforms_(ctx, sizeof(FrameUniforms), "frame.uniforms", 0, gpu::MemoryUse::HostVisible),
       stats_(ctx, shared::kStatCount * sizeof(uint32_t), "frame.stats"),
       queueState_(ctx, 2 * sizeof(shared::QueueState), "path.queues",
@@ -68,14 +67,18 @@ void PathTracer::resetAccumulation() {
 }
 
 const gpu::ComputePipeline& PathTracer::shadeVariant(const GpuScene& scene,
-                                                     const GuidingBinder& guiding) {
+                                                     const GuideFeatures& guide) {
   // Specialization constants 3..6 of shaders/include/features.glsl.
-  std::vector<uint32_t> features = {0, 0, 0, scene.hasTextures(), guiding && guiding.points,
-                                    guiding && guiding.lightLearning, scene.hasNonTriangleLights()};
+  std::vector<uint32_t> features = {0, 0, 0, scene.hasTextures(), guide.points, guide.lightLearning, scene.hasNonTriangleLights()};
   uint32_t key = features[3] | features[4] << 1 | features[5] << 2 | features[6] << 3;
   auto& slot = shadeVariants_[key];
   if (!slot) slot = std::make_unique<gpu::ComputePipeline>(ctx_, "pt_shade", features);
   return *slot;
+}
+
+void PathTracer::setTemporalBlend(float k) {
+  if (!(k >= 0.0f && k < 1.0f)) throw std::invalid_argument("temporal blend must be in [0, 1)");
+  settings_.temporalBlend = k;
 }
 
 void PathTracer::fadeAccumulation(float factor) {
@@ -86,7 +89,7 @@ void PathTracer::fadeAccumulation(float factor) {
 }
 
 void PathTracer::recordFrame(gpu::PassRecorder& rec, const GpuScene& scene,
-                             const CameraView& camera, const GuidingBinder& guiding) {
+                             const CameraView& camera, const Guide& guide) {
   if (!cameraValid_ || !(camera == lastCamera_)) {
     if (cameraValid_) resetAccumulation();
     lastCamera_ = camera;
@@ -134,7 +137,7 @@ void PathTracer::recordFrame(gpu::PassRecorder& rec, const GpuScene& scene,
                   uint32_t bounce, uint32_t extend) {
     auto p = rec.pass(name, pipeline);
     scene.bind(p);
-    if (guiding) guiding.bind(p); else noGuiding_.bind(p);
+    guide.bind(p);
     p.read(QL_BIND_FRAME, frameUniforms_)
         .write(QL_BIND_PATH_STATE, *pathsView_)
         .push(shared::TracePush{sample, bounce, extend, pathCount});
@@ -152,7 +155,7 @@ void PathTracer::recordFrame(gpu::PassRecorder& rec, const GpuScene& scene,
         .write(QL_BIND_QUEUE_STATE, queueState_)
         .dispatchIndirect(queueState_, (bounce & 1) * sizeof(shared::QueueState) + 4);
   };
-  const gpu::ComputePipeline& shade = shadeVariant(scene, guiding);
+  const gpu::ComputePipeline& shade = shadeVariant(scene, guide.features());
   // Wavefront: begin, then per bounce trace (shadow + extension rays) and
   // shade over the live paths only, a last trace for the final shadow rays, end.
   for (uint32_t s = 0; s < settings_.samplesPerFrame; ++s) {

@@ -12,7 +12,7 @@
 #include "engine/gpu/image.h"
 #include "engine/render/gpu_scene.h"
 #include "engine/render/image_io.h"
-#include "engine/render/null_guiding.h"
+#include "engine/render/guide.h"
 #include "engine/render/render_settings.h"
 
 namespace qlight::render {
@@ -36,13 +36,15 @@ class PathTracer {
   void fadeAccumulation(float factor);
   // The batch size alone does not change the image: accumulation goes on.
   void setSamplesPerFrame(uint32_t n) { settings_.samplesPerFrame = n; }
+  // Nor does the weight a fade will keep (settings.temporalBlend, in [0, 1)).
+  void setTemporalBlend(float k);
   uint32_t accumulatedSamples() const { return accumulated_; }
 
   // Records settings.samplesPerFrame samples of `scene` seen from `camera`.
-  // The camera moving restarts accumulation. `guiding` binds the learned
-  // distributions (engine/guiding); without it paths are not guided.
+  // The camera moving restarts accumulation. `guide` binds the learned
+  // distributions (engine/guiding; its null guide for unguided paths).
   void recordFrame(gpu::PassRecorder& recorder, const GpuScene& scene, const CameraView& camera,
-                   const GuidingBinder& guiding = {});
+                   const Guide& guide);
   // After the frame's fence: its counters (the stats buffer is cleared for the next frame).
   FrameCounters collectCounters();
 
@@ -56,9 +58,8 @@ class PathTracer {
   // The wavefront passes (shaders/pt_*.comp) and the path state between them.
   gpu::ComputePipeline begin_, trace_, end_, queue_;
   // pt_shade specialized per feature set (textures, guiding, light learning, non-triangle lights).
-  const gpu::ComputePipeline& shadeVariant(const GpuScene& scene, const GuidingBinder& guiding);
+  const gpu::ComputePipeline& shadeVariant(const GpuScene& scene, const GuideFeatures& guide);
   std::map<uint32_t, std::unique_ptr<gpu::ComputePipeline>> shadeVariants_;
-  NullGuiding noGuiding_;
   std::unique_ptr<gpu::Buffer> paths_;
   std::unique_ptr<gpu::BufferView> pathsView_;
   std::unique_ptr<gpu::Buffer> queueIds_[2];

@@ -9,6 +9,7 @@ SceneWorld::SceneWorld(const scene::SceneAsset& asset, float aspect) : asset_(as
   // Registered out of order on purpose: the scheduler orders them by what
   // they read and write (animation -> transforms -> extract).
   scheduler_.add("extract")
+      .phase(ecs::Phase::Extract)
       .reads<scene::WorldTransform, scene::MeshInstance, scene::PunctualLight>()
       .writes<render::SceneDraw>()
       .run([this](ecs::Registry& r) { extract(r); });
@@ -27,7 +28,8 @@ SceneWorld::SceneWorld(const scene::SceneAsset& asset, float aspect) : asset_(as
 
 void SceneWorld::advance(float seconds) {
   time_ = seconds;
-  scheduler_.runFrame(registry_);
+  scheduler_.runPhase(registry_, ecs::Phase::Simulate);
+  scheduler_.runPhase(registry_, ecs::Phase::Extract);
 }
 
 void SceneWorld::extract(ecs::Registry& r) {

@@ -1,6 +1,8 @@
-// The scene as ECS entities, advanced each frame by the scheduler's systems:
-// animation -> transforms -> extraction of what the renderer draws. Cache
-// points live in the same registry (engine/guiding).
+// The scene as ECS entities, advanced each frame by the scheduler's simulate
+// and extract phases: animation -> transforms -> extraction of what the
+// renderer draws. Cache points live in the same registry (engine/guiding), and
+// the Renderer adds the frame's later phases (upload, trace, learn, present) to
+// the same scheduler.
 #pragma once
 #include "engine/ecs/registry.h"
 #include "engine/ecs/scheduler.h"
@@ -14,7 +16,7 @@ class SceneWorld {
  public:
   SceneWorld(const scene::SceneAsset& asset, float aspect);
 
-  // Runs the frame's systems at scene time t (animations loop).
+  // Runs the simulate and extract phases at scene time t (animations loop).
   void advance(float seconds);
 
   const render::SceneDraw& draw() const { return draw_; }
@@ -24,6 +26,7 @@ class SceneWorld {
   bool moved() const { return moved_; }
 
   ecs::Registry& registry() { return registry_; }
+  ecs::Scheduler& scheduler() { return scheduler_; }
   const ecs::Scheduler& scheduler() const { return scheduler_; }
 
  private:

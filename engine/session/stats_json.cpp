@@ -3,10 +3,10 @@
 #include <fstream>
 #include <stdexcept>
 
-namespace qlight::render {
+namespace qlight::session {
 
 nlohmann::json statsToJson(const RenderStats& s) {
-  const FrameCounters& c = s.counters;
+  const render::FrameCounters& c = s.counters;
   double paths = double(std::max<uint64_t>(c.paths, 1));
   nlohmann::json j;
   j["width"] = s.width;
@@ -62,4 +62,4 @@ void writeJson(const std::filesystem::path& path, const nlohmann::json& json) {
   if (!out) throw std::runtime_error(path.string() + ": write failed");
 }
 
-}  // namespace qlight::render
+}  // namespace qlight::session

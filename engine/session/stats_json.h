@@ -6,9 +6,9 @@
 
 #include "engine/session/offline_render.h"
 
-namespace qlight::render {
+namespace qlight::session {
 
 nlohmann::json statsToJson(const RenderStats& stats);
 void writeJson(const std::filesystem::path& path, const nlohmann::json& json);
 
-}  // namespace qlight::render
+}  // namespace qlight::session

@@ -60,6 +60,46 @@ TEST(Scheduler, IndependentSystemsAndSameTypeWritersKeepRegistrationOrder) {
   EXPECT_EQ(levels[1], (std::vector<std::string>{"a", "ui"}));
 }
 
+TEST(Scheduler, PhasesRunInOrderWhateverTheRegistrationOrder) {
+  Scheduler scheduler;
+  scheduler.add("display").phase(Phase::Present).reads<Frame>().run(noop());
+  scheduler.add("learn").phase(Phase::Learn).reads<Light>().run(noop());
+  scheduler.add("trace").phase(Phase::Trace).writes<Light>().run(noop());
+  scheduler.add("upload").phase(Phase::Upload).reads<WorldTransform>().run(noop());
+  scheduler.add("transforms").reads<LocalTransform>().writes<WorldTransform>().run(noop());
+  scheduler.add("animation").writes<LocalTransform>().run(noop());
+  scheduler.compile();
+  EXPECT_EQ(scheduler.order(), (std::vector<std::string>{"animation", "transforms", "upload",
+                                                         "trace", "learn", "display"}));
+  EXPECT_STREQ(phaseName(Phase::Learn), "learn");
+}
+
+TEST(Scheduler, ALaterPhaseWritingWhatAnEarlierReadsIsNoCycle) {
+  // The learn phase writes what the next frame's trace reads: that is across frames.
+  Scheduler scheduler;
+  scheduler.add("learn").phase(Phase::Learn).reads<Frame>().writes<Light>().run(noop());
+  scheduler.add("trace").phase(Phase::Trace).reads<Light>().writes<Frame>().run(noop());
+  scheduler.compile();
+  EXPECT_EQ(scheduler.order(), (std::vector<std::string>{"trace", "learn"}));
+}
+
+TEST(Scheduler, RunPhaseRunsOnlyThatPhase) {
+  Registry registry;
+  Scheduler scheduler;
+  std::vector<std::string> ran;
+  scheduler.add("trace").phase(Phase::Trace).run([&](Registry&) { ran.push_back("trace"); });
+  scheduler.add("simulate").run([&](Registry&) { ran.push_back("simulate"); });
+  scheduler.add("learn").phase(Phase::Learn).run([&](Registry&) { ran.push_back("learn"); });
+  scheduler.runPhase(registry, Phase::Simulate);
+  EXPECT_EQ(ran, (std::vector<std::string>{"simulate"}));
+  scheduler.runPhase(registry, Phase::Learn);
+  scheduler.runPhase(registry, Phase::Trace);
+  EXPECT_EQ(ran, (std::vector<std::string>{"simulate", "learn", "trace"}));
+  ran.clear();
+  scheduler.runFrame(registry);
+  EXPECT_EQ(ran, (std::vector<std::string>{"simulate", "trace", "learn"}));
+}
+
 TEST(Scheduler, AccessSpellingMatchesViews) {
   Scheduler scheduler;
   scheduler.add("consumer").access<const WorldTransform>().run(noop());

@@ -32,7 +32,7 @@ TEST_P(GuidedUnbiased, GuidedEqualsUnguidedWithinNoise) {
       g.pointBudget = 4096;
       g.dartPaths = 8192;
       g.seed = seed;
-      auto r = render::renderScene(ctx(), asset, s, c.spp, 0.0f, g);
+      auto r = session::renderScene(ctx(), asset, s, c.spp, 0.0f, g);
       EXPECT_EQ(r.stats.counters.invalidSamples, 0u);
       if (guided) EXPECT_GT(r.stats.guidingStats.points, 100u);
       return r.image;

@@ -23,10 +23,10 @@ TEST_F(LearningProgress, DoorSceneEmitterHitsRiseAndPathsShorten) {
   s.maxDepth = 12;
   s.samplesPerFrame = 1;
   const uint32_t frames = 20;
-  auto unguided = render::renderScene(ctx(), asset, s, frames, 0.0f);
+  auto unguided = session::renderScene(ctx(), asset, s, frames, 0.0f);
   guiding::GuidingSettings g;
   g.pointBudget = 8192;
-  auto guided = render::renderScene(ctx(), asset, s, frames, 0.0f, g);
+  auto guided = session::renderScene(ctx(), asset, s, frames, 0.0f, g);
 
   const auto& share = guided.stats.emitterHitShareByFrame;
   const auto& length = guided.stats.pathLengthByFrame;

@@ -16,7 +16,7 @@ TEST_F(EstimatorAgreement, CornellBoxBsdfNeeAndMisConverge) {
       render::RenderSettings s = smallSettings(setup.size, setup.size, seed);
       s.estimator = estimator;
       s.maxDepth = 4;
-      auto r = render::renderScene(ctx(), asset, s, 16, 0.0f);
+      auto r = session::renderScene(ctx(), asset, s, 16, 0.0f);
       EXPECT_EQ(r.stats.counters.invalidSamples, 0u);
       return r.image;
     };

@@ -51,7 +51,7 @@ TEST_P(Furnace, RadianceIsEmissionOverOneMinusAlbedo) {
   s.estimator = c.estimator;
   s.maxDepth = 1024;  // effectively unbounded: Russian roulette ends the paths
   s.russianRoulette = true;
-  auto r = render::renderScene(ctx(), asset, s, 32, 0.0f);
+  auto r = session::renderScene(ctx(), asset, s, 32, 0.0f);
   EXPECT_EQ(r.stats.counters.invalidSamples, 0u);
 
   // All pixels share the expectation, so their spread gives the standard

@@ -1,10 +1,8 @@
 // Temporal blending keeps the accumulated samples at a weight: after a fade by
 // k the image holds k times the old samples plus the new ones, in radiance and
 // in sample count alike, so the mean stays an unbiased weighted average.
-#include "engine/gpu/pass_recorder.h"
-#include "engine/render/gpu_scene.h"
-#include "engine/render/path_tracer.h"
-#include "engine/session/scene_world.h"
+#include "engine/session/offline_render.h"
+#include "engine/session/renderer.h"
 #include "tests/render/render_support.h"
 
 namespace qlight::test {
@@ -14,19 +12,11 @@ class TemporalBlend : public GpuTest {};
 
 TEST_F(TemporalBlend, FadeWeightsTheHistoryInRadianceAndCount) {
   scene::SceneAsset asset = scene::loadGltf(assetPath("cornell_box.gltf"));
-  session::SceneWorld world(asset, 1.0f);
-  render::GpuScene scene(ctx(), asset);
-  scene.update(world.draw());
   render::RenderSettings s = smallSettings(16, 16, 3);
   s.samplesPerFrame = 4;
-  render::PathTracer tracer(ctx(), s);
-  auto frame = [&] {
-    ctx().submitAndWait([&](VkCommandBuffer cmd) {
-      gpu::PassRecorder rec(ctx(), cmd);
-      tracer.recordFrame(rec, scene, world.camera());
-      rec.finish();
-    });
-  };
+  session::Renderer renderer(ctx(), asset, s, session::disabledGuiding(), 1.0f);
+  render::PathTracer& tracer = renderer.tracer();
+  auto frame = [&] { renderer.renderFrame(0.0f); };
   frame();
   auto before = tracer.accumulation().readFloats(ctx());
   tracer.fadeAccumulation(0.25f);

@@ -1,0 +1,125 @@
+#include "engine/guiding/learned_tables.h"
+
+#include <algorithm>
+#include <cstring>
+#include <stdexcept>
+
+#include "shaders/shared/guiding_types.h"
+
+namespace qlight::guiding {
+namespace {
+
+// The light values are a points x lights table, far larger than Q for many lights: they
+// are updated every kLightUpdateInterval frames. Targets keep accumulating in between and
+// the batched update applies them all at once.
+constexpr uint32_t kLightUpdateInterval = 4;
+
+uint32_t floatBits(float f) {
+  uint32_t u;
+  std::memcpy(&u, &f, 4);
+  return u;
+}
+
+std::unique_ptr<gpu::Buffer> makeTableBuffer(const gpu::Context& ctx, uint64_t bytes, const std::string& name) {
+  return std::make_unique<gpu::Buffer>(ctx, std::max<uint64_t>(bytes, 16), name,
+                                       VK_BUFFER_USAGE_UNIFORM_TEXEL_BUFFER_BIT);
+}
+
+}  // namespace
+
+void LearnedTable::allocate(const gpu::Context& ctx, uint64_t slots, uint32_t length, const std::string& name) {
+  rowLength = length;
+  const uint64_t entries = std::max<uint64_t>(slots * length, 1);
+  cdfView.reset();
+  values = makeTableBuffer(ctx, entries * 4, name + ".values");
+  visits = makeTableBuffer(ctx, entries * 4, name + ".visits");
+  cdf = makeTableBuffer(ctx, entries * 4, name + ".cdf");
+  sums = makeTableBuffer(ctx, entries * 8, name + ".sums");  // 64-bit fixed point per entry
+  counts = makeTableBuffer(ctx, entries * 4, name + ".counts");
+  cdfView = std::make_unique<gpu::BufferView>(ctx, *cdf, VK_FORMAT_R32_SFLOAT);
+}
+
+void LearnedTable::recordReset(gpu::PassRecorder& rec, float initial, uint64_t first, uint64_t count) const {
+  const uint64_t firstEntry = first * rowLength, entries = count * rowLength;
+  const bool whole = first == 0 && entries * 4 >= values->size();
+  auto fill = [&](const gpu::Buffer& b, uint32_t value, uint64_t entryBytes) {
+    if (whole) rec.fill("guiding.reset", b, value);
+    else rec.fill("guiding.reset", b, value, firstEntry * entryBytes, entries * entryBytes);
+  };
+  fill(*values, floatBits(initial), 4);
+  fill(*visits, 0, 4);
+  fill(*sums, 0, 8);
+  fill(*counts, 0, 4);
+  fill(*cdf, 0, 4);
+}
+
+LearnedTables::LearnedTables(const gpu::Context& ctx) : ctx_(ctx), scan_(ctx), update_(ctx, "q_update") {}
+
+void LearnedTables::allocate(uint32_t slots, uint32_t strata, uint32_t lights) {
+  slots_ = slots;
+  lights_ = lights;
+  q_.allocate(ctx_, slots, strata, "guiding.q");
+  v_.allocate(ctx_, slots, lights, "guiding.v");
+  if (!pointUpdates_ || pointUpdates_->size() < std::max<uint64_t>(uint64_t(slots) * 4, 16))
+    pointUpdates_ = makeTableBuffer(ctx_, uint64_t(slots) * 4, "guiding.pointUpdates");
+}
+
+void LearnedTables::reset(const GuidingSettings& settings) {
+  // Uniform Q (cosine sampling), no visits; the update pass with no targets then writes
+  // the CDF weights, and the scan the CDFs, for every slot.
+  ctx_.submitAndWait([&](VkCommandBuffer cmd) {
+    gpu::PassRecorder rec(ctx_, cmd);
+    q_.recordReset(rec, settings.initialQ, 0, slots_);
+    rec.fill("guiding.reset", *pointUpdates_, 0);
+    // Light values start at the floor: until a light has shown a contribution at a point,
+    // NEE picks it by power (the mixture), not uniformly among all lights.
+    v_.recordReset(rec, settings.qFloor, 0, slots_);
+    recordTables(rec, slots_, settings);
+    rec.finish();
+  });
+}
+
+void LearnedTables::recordResetRows(gpu::PassRecorder& rec, std::span<const uint32_t> slots,
+                                    const GuidingSettings& settings) const {
+  for (uint32_t slot : slots) {
+    q_.recordReset(rec, settings.initialQ, slot, 1);
+    if (lights_ > 0) v_.recordReset(rec, settings.qFloor, slot, 1);
+    rec.fill("guiding.reset", *pointUpdates_, 0, uint64_t(slot) * 4, 4);
+  }
+}
+
+void LearnedTables::recordLearning(gpu::PassRecorder& rec, uint32_t rows, const GuidingSettings& settings) {
+  recordTables(rec, rows, settings);
+}
+
+void LearnedTables::recordTables(gpu::PassRecorder& rec, uint32_t rows, const GuidingSettings& settings) {
+  if (rows == 0) return;
+  auto updateTable = [&](const char* name, const LearnedTable& table, bool cosine) {
+    shared::TableUpdatePush push{rows * table.rowLength, table.rowLength, settings.rows, settings.cols,
+                                 cosine ? 1u : 0u, settings.alphaMin, settings.alphaMax, settings.qFloor};
+    rec.pass(name, update_)
+        .write(0, *table.values)
+        .write(1, *table.visits)
+        .write(2, *table.cdf)
+        .write(3, *table.sums)
+        .write(4, *table.counts)
+        .write(5, *pointUpdates_)
+        .push(push)
+        .dispatchThreads(push.entries);
+  };
+  updateTable("guiding.q_update", q_, true);
+  scan_.scanSegments(rec, *q_.cdf, rows, q_.rowLength);
+  if (lights_ > 0 && lightFrame_++ % kLightUpdateInterval == 0) {
+    updateTable("guiding.v_update", v_, false);
+    scan_.scanSegments(rec, *v_.cdf, rows, lights_);
+  }
+}
+
+std::vector<float> LearnedTables::readQ(uint32_t slot) const {
+  if (slot >= slots_) throw std::out_of_range("no cache point slot " + std::to_string(slot));
+  std::vector<float> q(q_.rowLength);
+  q_.values->download(ctx_, q.data(), q.size() * 4, uint64_t(slot) * q.size() * 4);
+  return q;
+}
+
+}  // namespace qlight::guiding

@@ -1,0 +1,66 @@
+// What the guide has learned, per cache point slot, kept across frames as named
+// GPU buffers: Q over the hemisphere's strata and the light values V over the
+// lights (Dahm & Keller section 4), each with visit counts, the CDF the path
+// passes sample, and the frame's target sums (64-bit fixed point, so the order
+// of the atomics does not matter); and the Q updates each point has received
+// (its confidence). The update and CDF passes run after each frame's tracing.
+#pragma once
+#include <memory>
+#include <span>
+#include <string>
+#include <vector>
+
+#include "engine/gpu/compute_pipeline.h"
+#include "engine/gpu/pass_recorder.h"
+#include "engine/gpu/prefix_sum.h"
+#include "engine/guiding/guiding_settings.h"
+
+namespace qlight::guiding {
+
+// One learned table (Q over strata, or V over lights) and its frame accumulators.
+struct LearnedTable {
+  std::unique_ptr<gpu::Buffer> values, visits, cdf, sums, counts;
+  std::unique_ptr<gpu::BufferView> cdfView;  // the path passes read the CDF as a texel buffer
+  uint32_t rowLength = 0;                    // entries per slot
+
+  void allocate(const gpu::Context& ctx, uint64_t slots, uint32_t rowLength, const std::string& name);
+  // Fills the rows [first, first + count) with `initial` values and no visits or targets.
+  void recordReset(gpu::PassRecorder& rec, float initial, uint64_t first, uint64_t count) const;
+};
+
+class LearnedTables {
+ public:
+  explicit LearnedTables(const gpu::Context& ctx);
+
+  // Fresh buffers for `slots` rows of `strata` Q entries and `lights` V entries (0: no V).
+  void allocate(uint32_t slots, uint32_t strata, uint32_t lights);
+  // Every row back to the start (uniform Q, V at the floor), with valid CDFs: points
+  // added later start from a valid distribution without a learning pass of their own.
+  void reset(const GuidingSettings& settings);
+  // The rows of slots a new point took over from a destroyed one.
+  void recordResetRows(gpu::PassRecorder& rec, std::span<const uint32_t> slots,
+                       const GuidingSettings& settings) const;
+  // After the frame's tracing: the frame's targets applied to the first `rows` rows
+  // (D&K eq. 5 with the batched learning rate), then their CDFs.
+  void recordLearning(gpu::PassRecorder& rec, uint32_t rows, const GuidingSettings& settings);
+
+  uint32_t lights() const { return lights_; }
+  const LearnedTable& q() const { return q_; }
+  const LearnedTable& v() const { return v_; }
+  const gpu::Buffer& pointUpdates() const { return *pointUpdates_; }
+  // Q of one slot (strata values), for tests and the UI.
+  std::vector<float> readQ(uint32_t slot) const;
+
+ private:
+  void recordTables(gpu::PassRecorder& rec, uint32_t rows, const GuidingSettings& settings);
+
+  const gpu::Context& ctx_;
+  gpu::PrefixSum scan_;
+  gpu::ComputePipeline update_;
+  LearnedTable q_, v_;
+  std::unique_ptr<gpu::Buffer> pointUpdates_;
+  uint32_t slots_ = 0, lights_ = 0;
+  uint32_t lightFrame_ = 0;  // learning passes so far, for the light-value update interval
+};
+
+}  // namespace qlight::guiding

@@ -1,0 +1,70 @@
+// Q-learned importance sampling across frames (Dahm & Keller 2017, on the GPU
+// as van Mastrigt 2018), as the path tracer's guide. It composes the parts,
+// each with one job: where points come from (PointGenerator), the points with
+// their stable slots and grid (CachePointSet), what was learned (LearnedTables)
+// and the bindings the path passes read (GuideBuffers).
+#pragma once
+#include <memory>
+#include <vector>
+
+#include "engine/ecs/registry.h"
+#include "engine/guiding/cache_point_set.h"
+#include "engine/guiding/guiding_settings.h"
+#include "engine/guiding/learned_tables.h"
+#include "engine/guiding/point_generation.h"
+#include "engine/render/gpu_scene.h"
+#include "engine/render/guide.h"
+
+namespace qlight::guiding {
+
+struct GuidingStats {
+  uint32_t points = 0;
+  uint32_t strata = 0;
+  uint32_t lightsLearned = 0;  // 0 when light learning is off
+  float rejectionMin = 0, rejectionMax = 0, searchRadius = 0;
+  uint32_t spawnedPoints = 0;  // added from camera paths since generation
+};
+
+class QGuide final : public render::Guide {
+ public:
+  QGuide(const gpu::Context& ctx, const GuidingSettings& settings);
+
+  // New settings. Strata or table settings reset the tables (the points and their grid
+  // stay); point settings regenerate the points at the next generatePoints.
+  void setSettings(const GuidingSettings& settings);
+  const GuidingSettings& settings() const { return settings_; }
+  bool needsPoints() const { return needsPoints_; }
+
+  // (Re)builds the cache points from darts shot from the scene's lights, as CachePoint
+  // entities in `registry`, and resets the learned tables.
+  void generatePoints(ecs::Registry& registry, const render::GpuScene& scene);
+  // After a frame's fence: points where its camera paths found none join the set.
+  void acceptSpawns(ecs::Registry& registry);
+  // Upload phase: changed points and their grid to the GPU (fresh rows for reused slots).
+  void uploadPoints(ecs::Registry& registry);
+  // Learn phase, after the frame's path tracing: the Q (and V) updates, then the CDFs.
+  void recordLearning(gpu::PassRecorder& recorder);
+
+  GuidingStats stats() const;
+  // Q of the point in `slot` (its strata values), for tests and the UI.
+  std::vector<float> readQ(uint32_t slot) const { return tables_.readQ(slot); }
+
+  void bind(gpu::PassBuilder& pass) const override;
+  render::GuideFeatures features() const override;
+
+ private:
+  void writeUniforms();
+
+  const gpu::Context& ctx_;
+  GuidingSettings settings_;
+  PointGenerator generator_;
+  std::unique_ptr<CachePointSet> points_;
+  LearnedTables tables_;
+  gpu::Buffer uniforms_;  // shared::GuidingUniforms
+  PointRadii radii_;
+  uint32_t spawned_ = 0;
+  bool needsPoints_ = true;
+  uint32_t generation_ = 0;
+};
+
+}  // namespace qlight::guiding

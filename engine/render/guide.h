@@ -1,0 +1,24 @@
+// What the path tracing passes need from a guide (engine/guiding holds them all,
+// the null guide too): its bindings, the guide block of shaders/shared/
+// bindings.h, and which guiding features the frame uses. The shade pass is
+// specialized on those features: lavapipe runs both sides of every branch, so
+// code for an unused feature must not be in the pipeline.
+#pragma once
+#include "engine/gpu/pass_recorder.h"
+
+namespace qlight::render {
+
+struct GuideFeatures {
+  bool points = false;         // cache points are searched (guided sampling, learning, spawns)
+  bool lightLearning = false;  // learned light selection for NEE
+};
+
+class Guide {
+ public:
+  virtual ~Guide() = default;
+  // Binds every guide binding of a path tracing pass.
+  virtual void bind(gpu::PassBuilder& pass) const = 0;
+  virtual GuideFeatures features() const = 0;
+};
+
+}  // namespace qlight::render
