@@ -93,7 +93,7 @@ void BM_PathTrace(benchmark::State& state) {
   double gpuMs = 0, learnMs = 0;
   uint64_t rays = 0;
   for (auto _ : state) {
-    auto r = render::renderScene(*f.ctx, asset, s, 16, 0.0f, g);
+    auto r = session::renderScene(*f.ctx, asset, s, 16, 0.0f, g);
     double frameMs = 0;
     for (auto& [name, ms] : r.stats.gpuMs) {
       frameMs += ms;
