@@ -23,8 +23,8 @@ void addRenderOptions(CLI::App& app, render::RenderSettings& s) {
   app.add_option("--temporal-blend", s.temporalBlend,
                  "animated scenes: weight kept of the accumulated image when things move (0: restart)")
       ->check(CLI::Range(0.0, 0.99));
-  std::map<std::string, render::Tonemap> tonemaps{{"aces", render::Tonemap::Aces},
-                                                  {"clamp", render::Tonemap::Clamp}};
+  std::map<std::string, image::Tonemap> tonemaps{{"aces", image::Tonemap::Aces},
+                                                  {"clamp", image::Tonemap::Clamp}};
   app.add_option("--tonemap", s.tonemap, "aces or clamp (PNG and display only)")
       ->transform(CLI::CheckedTransformer(tonemaps, CLI::ignore_case));
 }

@@ -8,7 +8,7 @@
 #include <filesystem>
 #include <memory>
 
-#include "engine/scene/gltf_loader.h"
+#include "engine/gltf/gltf_loader.h"
 #include "engine/session/renderer.h"
 #include "engine/session/stats_json.h"
 #include "game/context_setup.h"
@@ -36,7 +36,7 @@ bool displayAvailable() {
 }
 
 int runHeadless(const DemoArgs& a, const CommonOptions& common) {
-  scene::SceneAsset asset = scene::loadGltf(resolveScene(a.scene));
+  scene::SceneAsset asset = gltf::loadGltf(resolveScene(a.scene));
   auto ctx = createContext(common, false);
   const render::RenderSettings& s = a.settings;
   session::Renderer renderer(*ctx, asset, s, a.guiding);
@@ -65,7 +65,7 @@ int runHeadless(const DemoArgs& a, const CommonOptions& common) {
     if (last || (a.saveEvery > 0 && f % a.saveEvery == 0)) {
       char name[64];
       std::snprintf(name, sizeof(name), "frame_%04u.png", f);
-      render::writeImage(fs::path(a.outDir) / name, renderer.tracer().readImage(), s.exposure, s.tonemap);
+      image::writeImage(fs::path(a.outDir) / name, renderer.tracer().readImage(), s.exposure, s.tonemap);
     }
   }
   total.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
@@ -75,7 +75,7 @@ int runHeadless(const DemoArgs& a, const CommonOptions& common) {
   stats["mode"] = "headless";
   stats["frames_detail"] = frames;
   session::writeJson(fs::path(a.outDir) / "stats.json", stats);
-  render::writeImage(fs::path(a.outDir) / "final.png", renderer.tracer().readImage(), s.exposure, s.tonemap);
+  image::writeImage(fs::path(a.outDir) / "final.png", renderer.tracer().readImage(), s.exposure, s.tonemap);
   std::printf("qlight demo: %u frames of %s at %ux%u in %.2f s (%.1f ms/frame, %.2f Mrays/s); "
               "images and stats.json in %s\n",
               a.frames, a.scene.c_str(), s.width, s.height, total.seconds,

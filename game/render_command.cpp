@@ -6,7 +6,7 @@
 #include "engine/gpu/context.h"
 #include "engine/session/offline_render.h"
 #include "engine/session/stats_json.h"
-#include "engine/scene/gltf_loader.h"
+#include "engine/gltf/gltf_loader.h"
 #include "game/context_setup.h"
 
 namespace qlight::game {
@@ -25,14 +25,14 @@ struct RenderArgs {
 };
 
 int runRender(RenderArgs a, const CommonOptions& common) {
-  render::checkImageExtension(a.out);
+  image::checkImageExtension(a.out);
   finishGuidingOptions(a.guidingCli, a.guiding, a.settings);
-  scene::SceneAsset asset = scene::loadGltf(a.scene);
+  scene::SceneAsset asset = gltf::loadGltf(a.scene);
   auto ctx = createContext(common, /*windowed=*/false);
   render::RenderSettings s = a.settings;
   s.samplesPerFrame = std::min(a.batch, a.spp);
   session::OfflineRender result = session::renderScene(*ctx, asset, s, a.spp, a.time, a.guiding);
-  render::writeImage(a.out, result.image, s.exposure, s.tonemap);
+  image::writeImage(a.out, result.image, s.exposure, s.tonemap);
   nlohmann::json stats = session::statsToJson(result.stats);
   stats["scene"] = a.scene;
   stats["time"] = a.time;

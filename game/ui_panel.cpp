@@ -74,7 +74,7 @@ bool drawRenderSection(render::RenderSettings& s, float& renderScale) {
   const char* tonemaps[] = {"clamp", "ACES"};
   int tonemap = int(s.tonemap);
   if (ImGui::Combo("tonemap", &tonemap, tonemaps, 2))
-    s.tonemap = render::Tonemap(tonemap), changed = true;
+    s.tonemap = image::Tonemap(tonemap), changed = true;
   changed |= ImGui::SliderFloat("render scale", &renderScale, 0.1f, 1.0f, "%.2f",
                                 ImGuiSliderFlags_AlwaysClamp);
   int seed = int(s.seed);

@@ -9,7 +9,7 @@
 #include <filesystem>
 
 #include "engine/gpu/pass_recorder.h"
-#include "engine/scene/gltf_loader.h"
+#include "engine/gltf/gltf_loader.h"
 #include "engine/ui/swapchain_blit.h"
 #include "game/context_setup.h"
 #include "game/ui_guiding_panel.h"
@@ -39,7 +39,7 @@ bool tracingDiffers(const render::RenderSettings& a, const render::RenderSetting
 
 WindowApp::WindowApp(const DemoArgs& args, const CommonOptions& common)
     : args_(args),
-      asset_(scene::loadGltf(args.scene)),
+      asset_(gltf::loadGltf(args.scene)),
       window_(args.windowWidth, args.windowHeight,
               "qlight: " + std::filesystem::path(args.scene).filename().string()),
       ctx_(createContext(common, true, ui::GlfwWindow::requiredInstanceExtensions(),
@@ -69,7 +69,7 @@ void WindowApp::registerDisplay() {
       .run([this](ecs::Registry& r) {
         ui::DisplaySettings display;
         display.exposure = wanted_.exposure;
-        display.tonemap = wanted_.tonemap == render::Tonemap::Aces ? shared::kTonemapAces
+        display.tonemap = wanted_.tonemap == image::Tonemap::Aces ? shared::kTonemapAces
                                                                    : shared::kTonemapClamp;
         display.encodeSrgb = !presenter_.swapchain().encodesSrgb();
         display_.record(*r.resource<session::FrameRecording>().recorder,

@@ -15,9 +15,9 @@ std::filesystem::path nextScreenshotPath(const std::filesystem::path& dir) {
 }
 
 void writeScreenshot(const render::PathTracer& tracer, const std::filesystem::path& path,
-                     float exposure, render::Tonemap tonemap) {
+                     float exposure, image::Tonemap tonemap) {
   if (path.has_parent_path()) std::filesystem::create_directories(path.parent_path());
-  render::writeImage(path, tracer.readImage(), exposure, tonemap);
+  image::writeImage(path, tracer.readImage(), exposure, tonemap);
   std::printf("qlight demo: screenshot %s\n", path.string().c_str());
 }
 

@@ -12,6 +12,6 @@ std::filesystem::path nextScreenshotPath(const std::filesystem::path& dir);
 
 // Waits for the GPU, then writes the mean image (creating parent folders).
 void writeScreenshot(const render::PathTracer& tracer, const std::filesystem::path& path,
-                     float exposure, render::Tonemap tonemap);
+                     float exposure, image::Tonemap tonemap);
 
 }  // namespace qlight::game

@@ -13,13 +13,15 @@
 #include <glm/gtc/quaternion.hpp>
 #include <string>
 
-#include "engine/scene/gltf_loader.h"
-#include "engine/scene/gltf_writer.h"
+#include "engine/gltf/gltf_loader.h"
+#include "engine/gltf/gltf_writer.h"
 #include "engine/scene/procedural.h"
 
 namespace {
 
 using namespace qlight::scene;
+using qlight::gltf::loadGltf;
+using qlight::gltf::saveGltf;
 using glm::vec3;
 
 constexpr float kPi = 3.14159265358979f;

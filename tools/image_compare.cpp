@@ -4,7 +4,7 @@
 #include <cstdio>
 #include <exception>
 
-#include "engine/render/image_io.h"
+#include "engine/image/image_io.h"
 
 int main(int argc, char** argv) {
   if (argc < 3) {
@@ -12,9 +12,9 @@ int main(int argc, char** argv) {
     return 2;
   }
   try {
-    qlight::render::LinearImage ref = qlight::render::readPfm(argv[1]);
+    qlight::image::LinearImage ref = qlight::image::readPfm(argv[1]);
     for (int i = 2; i < argc; ++i) {
-      qlight::render::LinearImage img = qlight::render::readPfm(argv[i]);
+      qlight::image::LinearImage img = qlight::image::readPfm(argv[i]);
       if (img.width != ref.width || img.height != ref.height) {
         std::fprintf(stderr, "image_compare: %s is %ux%u, the reference %ux%u\n", argv[i],
                      img.width, img.height, ref.width, ref.height);

@@ -191,8 +191,8 @@ FrameCounters PathTracer::collectCounters() {
   return c;
 }
 
-LinearImage PathTracer::readImage() const {
-  LinearImage img;
+image::LinearImage PathTracer::readImage() const {
+  image::LinearImage img;
   img.width = settings_.width;
   img.height = settings_.height;
   img.rgba = accum_->readFloats(ctx_);

@@ -11,7 +11,7 @@
 #include "engine/gpu/gpu_timer.h"
 #include "engine/gpu/image.h"
 #include "engine/render/gpu_scene.h"
-#include "engine/render/image_io.h"
+#include "engine/image/image_io.h"
 #include "engine/render/guide.h"
 #include "engine/render/render_settings.h"
 
@@ -50,7 +50,7 @@ class PathTracer {
 
   const gpu::Image& accumulation() const { return *accum_; }
   // Mean radiance per pixel (waits for the GPU).
-  LinearImage readImage() const;
+  image::LinearImage readImage() const;
 
  private:
   const gpu::Context& ctx_;

@@ -2,7 +2,7 @@
 #pragma once
 #include <cstdint>
 
-#include "engine/render/image_io.h"
+#include "engine/image/image_io.h"
 
 namespace qlight::render {
 
@@ -24,7 +24,7 @@ struct RenderSettings {
   // When lights or objects move: 0 restarts accumulation, k in (0, 1) keeps the
   // accumulated samples weighted by k (temporal blending: less noise, some lag).
   float temporalBlend = 0.0f;
-  Tonemap tonemap = Tonemap::Aces;
+  image::Tonemap tonemap = image::Tonemap::Aces;
 };
 
 }  // namespace qlight::render

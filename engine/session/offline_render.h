@@ -4,7 +4,7 @@
 #pragma once
 #include "engine/gpu/context.h"
 #include "engine/guiding/guiding_settings.h"
-#include "engine/render/image_io.h"
+#include "engine/image/image_io.h"
 #include "engine/render/render_settings.h"
 #include "engine/scene/scene_asset.h"
 #include "engine/session/render_stats.h"
@@ -12,7 +12,7 @@
 namespace qlight::session {
 
 struct OfflineRender {
-  render::LinearImage image;
+  image::LinearImage image;
   RenderStats stats;
 };
 

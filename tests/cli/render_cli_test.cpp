@@ -6,7 +6,7 @@
 #include <fstream>
 #include <nlohmann/json.hpp>
 
-#include "engine/render/image_io.h"
+#include "engine/image/image_io.h"
 #include "tests/cli/run_binary.h"
 
 namespace qlight::test {
@@ -69,7 +69,7 @@ TEST(RenderCli, MaxDepthZeroShowsOnlyEmitters) {
   auto r = runQlight("render --scene " + asset("cornell_box.gltf") +
                      " --width 64 --height 64 --spp 4 --max-depth 0 --out " + (dir / "d.pfm").string());
   ASSERT_EQ(r.exitCode, 0) << r.output;
-  render::LinearImage img = render::readPfm(dir / "d.pfm");
+  image::LinearImage img = image::readPfm(dir / "d.pfm");
   // cornell_box.gltf: emissive (1, 0.70588, 0.23529) x strength 17.
   const float emission[3] = {17.0f, 17.0f * 0.70588235f, 17.0f * 0.23529412f};
   size_t lit = 0;

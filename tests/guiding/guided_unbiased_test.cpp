@@ -17,7 +17,7 @@ class GuidedUnbiased : public GpuTest, public ::testing::WithParamInterface<Unbi
 
 TEST_P(GuidedUnbiased, GuidedEqualsUnguidedWithinNoise) {
   UnbiasedCase c = GetParam();
-  scene::SceneAsset asset = scene::loadGltf(assetPath(c.scene));
+  scene::SceneAsset asset = gltf::loadGltf(assetPath(c.scene));
   AgreementSetup setup;
   setup.size = 32;
   setup.blocks = c.blocks;

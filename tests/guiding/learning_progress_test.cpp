@@ -16,7 +16,7 @@ double meanOf(const std::vector<double>& v, size_t begin, size_t end) {
 }
 
 TEST_F(LearningProgress, DoorSceneEmitterHitsRiseAndPathsShorten) {
-  scene::SceneAsset asset = scene::loadGltf(assetPath("door_ajar.gltf"));
+  scene::SceneAsset asset = gltf::loadGltf(assetPath("door_ajar.gltf"));
   render::RenderSettings s = smallSettings(160, 90, 3);
   s.estimator = render::Estimator::BsdfOnly;
   s.russianRoulette = false;

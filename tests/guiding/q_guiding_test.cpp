@@ -13,7 +13,7 @@ namespace {
 class QGuidingState : public GpuTest {};
 
 TEST_F(QGuidingState, PointsLearnAndResetCleanly) {
-  scene::SceneAsset asset = scene::loadGltf(assetPath("cornell_box.gltf"));
+  scene::SceneAsset asset = gltf::loadGltf(assetPath("cornell_box.gltf"));
   render::RenderSettings s = smallSettings(32, 32, 2);
   s.samplesPerFrame = 2;
   guiding::GuidingSettings g;
@@ -73,7 +73,7 @@ TEST_F(QGuidingState, PointsLearnAndResetCleanly) {
 // (swap-and-pop moves the last point into the hole) leaves every row with its point, and
 // the slot freed is taken by the next point with a fresh row.
 TEST_F(QGuidingState, SlotsStayWithTheirPointsWhenOthersAreDestroyed) {
-  scene::SceneAsset asset = scene::loadGltf(assetPath("cornell_box.gltf"));
+  scene::SceneAsset asset = gltf::loadGltf(assetPath("cornell_box.gltf"));
   render::RenderSettings s = smallSettings(32, 32, 2);
   s.samplesPerFrame = 2;
   guiding::GuidingSettings g;

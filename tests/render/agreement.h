@@ -21,12 +21,12 @@ using RegionSamples = std::vector<std::vector<double>>;
 
 // render(seed) returns one independent render.
 inline RegionSamples regionMeans(const AgreementSetup& a,
-                                 const std::function<render::LinearImage(uint32_t)>& render,
+                                 const std::function<image::LinearImage(uint32_t)>& render,
                                  uint32_t seedBase) {
   RegionSamples out(a.blocks * a.blocks * 3);
   uint32_t step = a.size / a.blocks;
   for (uint32_t b = 0; b < a.batches; ++b) {
-    render::LinearImage img = render(seedBase + b);
+    image::LinearImage img = render(seedBase + b);
     for (uint32_t by = 0; by < a.blocks; ++by)
       for (uint32_t bx = 0; bx < a.blocks; ++bx)
         for (int c = 0; c < 3; ++c)

@@ -9,7 +9,7 @@ namespace {
 class EstimatorAgreement : public GpuTest {};
 
 TEST_F(EstimatorAgreement, CornellBoxBsdfNeeAndMisConverge) {
-  scene::SceneAsset asset = scene::loadGltf(assetPath("cornell_box.gltf"));
+  scene::SceneAsset asset = gltf::loadGltf(assetPath("cornell_box.gltf"));
   AgreementSetup setup;
   auto with = [&](render::Estimator estimator) {
     return [&, estimator](uint32_t seed) {

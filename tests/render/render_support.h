@@ -5,7 +5,7 @@
 #include <vector>
 
 #include "engine/session/offline_render.h"
-#include "engine/scene/gltf_loader.h"
+#include "engine/gltf/gltf_loader.h"
 #include "tests/gpu/gpu_fixture.h"
 
 namespace qlight::test {
@@ -41,7 +41,7 @@ inline Moments moments(const std::vector<double>& xs) {
 }
 
 // Mean of channel c over a rectangle of a linear image.
-inline double regionMean(const render::LinearImage& img, uint32_t x0, uint32_t y0, uint32_t x1,
+inline double regionMean(const image::LinearImage& img, uint32_t x0, uint32_t y0, uint32_t x1,
                          uint32_t y1, int c) {
   double sum = 0;
   for (uint32_t y = y0; y < y1; ++y)

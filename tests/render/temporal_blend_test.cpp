@@ -11,7 +11,7 @@ namespace {
 class TemporalBlend : public GpuTest {};
 
 TEST_F(TemporalBlend, FadeWeightsTheHistoryInRadianceAndCount) {
-  scene::SceneAsset asset = scene::loadGltf(assetPath("cornell_box.gltf"));
+  scene::SceneAsset asset = gltf::loadGltf(assetPath("cornell_box.gltf"));
   render::RenderSettings s = smallSettings(16, 16, 3);
   s.samplesPerFrame = 4;
   session::Renderer renderer(ctx(), asset, s, session::disabledGuiding(), 1.0f);

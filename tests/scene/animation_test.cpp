@@ -6,13 +6,15 @@
 #include <cmath>
 #include <glm/gtc/quaternion.hpp>
 
-#include "engine/scene/gltf_loader.h"
-#include "engine/scene/gltf_writer.h"
+#include "engine/gltf/gltf_loader.h"
+#include "engine/gltf/gltf_writer.h"
 #include "engine/scene/procedural.h"
-#include "gltf_test_files.h"
+#include "tests/gltf/gltf_test_files.h"
 
 namespace qlight::scene {
 namespace {
+
+using gltf::loadGltf;
 
 AnimationChannel channel(AnimationPath path, Interpolation interpolation, std::vector<float> times,
                          std::vector<glm::vec4> values) {
@@ -145,8 +147,8 @@ TEST(AnimationSampling, InterpolationsLoadFromAFile) {
       {{0, 0, 0, 0}, {0, 0, 0, 1}, {0, 0, 0, 0}, {0, 0, 0, 0}, {0, 0, 1, 0}, {0, 0, 0, 0}}));
   a.duration = 2.0f;
   scene.animations.push_back(a);
-  testing::TempDir dir;
-  saveGltf(scene, dir / "animated.gltf");
+  gltf::testing::TempDir dir;
+  gltf::saveGltf(scene, dir / "animated.gltf");
   const SceneAsset back = loadGltf(dir / "animated.gltf");
   ASSERT_EQ(back.animations.size(), 1u);
   ASSERT_EQ(back.animations[0].channels.size(), 2u);

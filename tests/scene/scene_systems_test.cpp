@@ -6,7 +6,7 @@
 #include <glm/gtc/quaternion.hpp>
 
 #include "engine/scene/animation.h"
-#include "engine/scene/gltf_loader.h"
+#include "engine/gltf/gltf_loader.h"
 #include "engine/scene/instantiate.h"
 #include "engine/scene/procedural.h"
 #include "tests/scene/matrix_compare.h"
@@ -14,6 +14,8 @@
 
 namespace qlight::scene {
 namespace {
+
+using gltf::loadGltf;
 
 
 // root (mesh) -> arm (animated rotation about y) -> hand (mesh, light); plus a static node.

@@ -6,7 +6,10 @@
 #include <string>
 #include <vector>
 
-namespace qlight::scene::detail {
+#include "engine/scene/scene_asset.h"
+
+namespace qlight::gltf::detail {
+using namespace ::qlight::scene;
 
 class LoadContext {
  public:
@@ -38,4 +41,4 @@ class LoadContext {
 // Folds line breaks (tinygltf's errors have several lines) into one line.
 std::string oneLine(const std::string& text);
 
-}  // namespace qlight::scene::detail
+}  // namespace qlight::gltf::detail

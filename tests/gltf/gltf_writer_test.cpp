@@ -6,9 +6,9 @@
 #include <sstream>
 
 #include "engine/scene/procedural.h"
-#include "gltf_test_files.h"
+#include "tests/gltf/gltf_test_files.h"
 
-namespace qlight::scene {
+namespace qlight::gltf {
 namespace {
 
 SceneAsset sampleScene() {
@@ -155,4 +155,4 @@ TEST(GltfWriter, Base64MatchesTheStandardAlphabetAndPadding) {
 }
 
 }  // namespace
-}  // namespace qlight::scene
+}  // namespace qlight::gltf

@@ -5,7 +5,8 @@
 
 #include "engine/scene/scene_asset.h"
 
-namespace qlight::scene {
+namespace qlight::gltf {
+using namespace ::qlight::scene;  // glTF I/O reads and writes the scene's plain data
 
 // Extensions read: KHR_lights_punctual, KHR_materials_emissive_strength,
 // KHR_materials_specular (specularFactor only); these may be in extensionsRequired.
@@ -18,4 +19,4 @@ namespace qlight::scene {
 // with a warning in SceneAsset::warnings, also printed to stderr.
 SceneAsset loadGltf(const std::filesystem::path& path);
 
-}  // namespace qlight::scene
+}  // namespace qlight::gltf

@@ -8,9 +8,12 @@
 #include <string>
 #include <vector>
 
-#include "engine/scene/gltf_context.h"
+#include "engine/gltf/gltf_context.h"
 
-namespace qlight::scene::detail {
+#include "engine/scene/scene_asset.h"
+
+namespace qlight::gltf::detail {
+using namespace ::qlight::scene;
 
 struct CheckedGltfFile {
   std::vector<uint8_t> bytes;  // the whole file
@@ -23,4 +26,4 @@ bool isSupportedRequiredExtension(const std::string& name);
 
 CheckedGltfFile readAndCheckGltfFile(const std::filesystem::path& path, LoadContext& ctx);
 
-}  // namespace qlight::scene::detail
+}  // namespace qlight::gltf::detail

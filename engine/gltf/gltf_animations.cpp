@@ -2,10 +2,10 @@
 // sampler's keys copied in; morph-weight channels are skipped with a warning.
 #include <algorithm>
 
-#include "engine/scene/gltf_accessor.h"
-#include "engine/scene/gltf_convert.h"
+#include "engine/gltf/gltf_accessor.h"
+#include "engine/gltf/gltf_convert.h"
 
-namespace qlight::scene::detail {
+namespace qlight::gltf::detail {
 namespace {
 
 Interpolation interpolationOf(const std::string& name, const std::string& owner, LoadContext& ctx) {
@@ -96,4 +96,4 @@ void convertAnimations(const tinygltf::Model& model, SceneAsset& scene, LoadCont
   }
 }
 
-}  // namespace qlight::scene::detail
+}  // namespace qlight::gltf::detail

@@ -9,9 +9,12 @@
 #include <string>
 #include <vector>
 
-#include "engine/scene/gltf_context.h"
+#include "engine/gltf/gltf_context.h"
 
-namespace qlight::scene::detail {
+#include "engine/scene/scene_asset.h"
+
+namespace qlight::gltf::detail {
+using namespace ::qlight::scene;
 
 // Element type: 1 = SCALAR, 2..4 = VEC2..VEC4.
 struct FloatAccessorRule {
@@ -37,4 +40,4 @@ void checkAccessorBounds(const tinygltf::Model& model, int accessor, const std::
 size_t accessorCount(const tinygltf::Model& model, int accessor, const std::string& use,
                      LoadContext& ctx);
 
-}  // namespace qlight::scene::detail
+}  // namespace qlight::gltf::detail

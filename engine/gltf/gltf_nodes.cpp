@@ -3,10 +3,10 @@
 #include <cmath>
 #include <glm/gtc/type_ptr.hpp>
 
-#include "engine/scene/gltf_convert.h"
+#include "engine/gltf/gltf_convert.h"
 #include "engine/scene/transforms.h"
 
-namespace qlight::scene::detail {
+namespace qlight::gltf::detail {
 namespace {
 
 constexpr float kHalfPi = 1.57079632679f;
@@ -234,4 +234,4 @@ void convertLights(const tinygltf::Model& model, SceneAsset& scene, LoadContext&
   }
 }
 
-}  // namespace qlight::scene::detail
+}  // namespace qlight::gltf::detail

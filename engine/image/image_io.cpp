@@ -1,4 +1,4 @@
-#include "engine/render/image_io.h"
+#include "engine/image/image_io.h"
 
 #include <stb/stb_image_write.h>
 #include <tinyexr.h>
@@ -11,7 +11,7 @@
 
 #include "shaders/shared/tonemap.h"
 
-namespace qlight::render {
+namespace qlight::image {
 namespace {
 
 std::string lowerExtension(const std::filesystem::path& p) {
@@ -107,4 +107,4 @@ LinearImage readPfm(const std::filesystem::path& path) {
   return img;
 }
 
-}  // namespace qlight::render
+}  // namespace qlight::image

@@ -1,15 +1,15 @@
-#include "engine/scene/gltf_loader.h"
+#include "engine/gltf/gltf_loader.h"
 
 #include <tiny_gltf.h>
 
 #include "engine/scene/animation.h"
-#include "engine/scene/gltf_accessor.h"
-#include "engine/scene/gltf_context.h"
-#include "engine/scene/gltf_convert.h"
-#include "engine/scene/gltf_file_check.h"
+#include "engine/gltf/gltf_accessor.h"
+#include "engine/gltf/gltf_context.h"
+#include "engine/gltf/gltf_convert.h"
+#include "engine/gltf/gltf_file_check.h"
 #include "engine/scene/transforms.h"
 
-namespace qlight::scene {
+namespace qlight::gltf {
 namespace {
 
 // tinygltf's stb decoder, except that an image it cannot decode is a warning (the texture
@@ -75,4 +75,4 @@ SceneAsset loadGltf(const std::filesystem::path& path) {
   return scene;
 }
 
-}  // namespace qlight::scene
+}  // namespace qlight::gltf

@@ -11,10 +11,10 @@
 #include <optional>
 
 #include "engine/scene/animation.h"
-#include "engine/scene/gltf_loader.h"
+#include "engine/gltf/gltf_loader.h"
 #include "engine/scene/transforms.h"
 
-namespace qlight::scene {
+namespace qlight::gltf {
 namespace {
 
 const std::filesystem::path kAssets = std::filesystem::path(QLIGHT_SOURCE_DIR) / "assets";
@@ -252,4 +252,4 @@ TEST(ShippedAssets, ManyLightsHasOverAHundredEmittersOfVaryingStrength) {
 }
 
 }  // namespace
-}  // namespace qlight::scene
+}  // namespace qlight::gltf

@@ -1,4 +1,4 @@
-#include "engine/scene/gltf_writer.h"
+#include "engine/gltf/gltf_writer.h"
 
 #include <algorithm>
 #include <cmath>
@@ -7,7 +7,7 @@
 #include <nlohmann/json.hpp>
 #include <stdexcept>
 
-namespace qlight::scene {
+namespace qlight::gltf {
 namespace {
 
 using nlohmann::json;
@@ -287,4 +287,4 @@ void saveGltf(const SceneAsset& scene, const std::filesystem::path& path,
   if (!out) throw std::runtime_error(path.string() + ": write failed");
 }
 
-}  // namespace qlight::scene
+}  // namespace qlight::gltf

@@ -6,9 +6,9 @@
 #include <glm/gtc/quaternion.hpp>
 
 #include "engine/scene/transforms.h"
-#include "gltf_test_files.h"
+#include "tests/gltf/gltf_test_files.h"
 
-namespace qlight::scene {
+namespace qlight::gltf {
 namespace {
 
 using testing::Bytes;
@@ -279,4 +279,4 @@ TEST(GltfFeatures, UnreadableImagesBecomeWhiteTexturesWithAWarning) {
 }
 
 }  // namespace
-}  // namespace qlight::scene
+}  // namespace qlight::gltf

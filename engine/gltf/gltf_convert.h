@@ -4,10 +4,11 @@
 
 #include <tiny_gltf.h>
 
-#include "engine/scene/gltf_context.h"
+#include "engine/gltf/gltf_context.h"
 #include "engine/scene/scene_asset.h"
 
-namespace qlight::scene::detail {
+namespace qlight::gltf::detail {
+using namespace ::qlight::scene;
 
 // Materials, then the textures they use (a texture's sRGB flag comes from its uses).
 void convertMaterials(const tinygltf::Model& model, SceneAsset& scene, LoadContext& ctx);
@@ -27,4 +28,4 @@ void replaceOrthographicCameras(const tinygltf::Model& model, SceneAsset& scene,
 
 void convertAnimations(const tinygltf::Model& model, SceneAsset& scene, LoadContext& ctx);
 
-}  // namespace qlight::scene::detail
+}  // namespace qlight::gltf::detail

@@ -1,4 +1,4 @@
-#include "engine/scene/gltf_file_check.h"
+#include "engine/gltf/gltf_file_check.h"
 
 #include <array>
 #include <cctype>
@@ -7,7 +7,7 @@
 #include <nlohmann/json.hpp>
 #include <system_error>
 
-namespace qlight::scene::detail {
+namespace qlight::gltf::detail {
 namespace {
 
 using nlohmann::json;
@@ -280,4 +280,4 @@ CheckedGltfFile readAndCheckGltfFile(const std::filesystem::path& path, LoadCont
   return file;
 }
 
-}  // namespace qlight::scene::detail
+}  // namespace qlight::gltf::detail

@@ -1,9 +1,9 @@
 // glTF materials and textures into MaterialAsset / TextureAsset.
 #include <algorithm>
 
-#include "engine/scene/gltf_convert.h"
+#include "engine/gltf/gltf_convert.h"
 
-namespace qlight::scene::detail {
+namespace qlight::gltf::detail {
 namespace {
 
 int32_t textureRef(const tinygltf::Model& model, const tinygltf::TextureInfo& info,
@@ -201,4 +201,4 @@ void convertTextures(const tinygltf::Model& model, SceneAsset& scene, LoadContex
   }
 }
 
-}  // namespace qlight::scene::detail
+}  // namespace qlight::gltf::detail

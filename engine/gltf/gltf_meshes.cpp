@@ -4,10 +4,10 @@
 #include <map>
 #include <numeric>
 
-#include "engine/scene/gltf_accessor.h"
-#include "engine/scene/gltf_convert.h"
+#include "engine/gltf/gltf_accessor.h"
+#include "engine/gltf/gltf_convert.h"
 
-namespace qlight::scene::detail {
+namespace qlight::gltf::detail {
 namespace {
 
 // One primitive's vertices and triangles before they join the mesh.
@@ -285,4 +285,4 @@ void convertMeshes(const tinygltf::Model& model, SceneAsset& scene, LoadContext&
   }
 }
 
-}  // namespace qlight::scene::detail
+}  // namespace qlight::gltf::detail

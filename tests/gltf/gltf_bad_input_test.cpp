@@ -2,9 +2,9 @@
 // problem, and none crashes or hangs. Things the loader can do without are warnings.
 #include <limits>
 
-#include "gltf_test_files.h"
+#include "tests/gltf/gltf_test_files.h"
 
-namespace qlight::scene {
+namespace qlight::gltf {
 namespace {
 
 using testing::Bytes;
@@ -352,4 +352,4 @@ TEST(GltfBadInput, BadCameraAndLightValues) {
 }
 
 }  // namespace
-}  // namespace qlight::scene
+}  // namespace qlight::gltf

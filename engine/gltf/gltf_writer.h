@@ -8,7 +8,8 @@
 
 #include "engine/scene/scene_asset.h"
 
-namespace qlight::scene {
+namespace qlight::gltf {
+using namespace ::qlight::scene;  // glTF I/O reads and writes the scene's plain data
 
 // Written: meshes (one primitive per run of triangles sharing a material, vertices shared by
 // the mesh's primitives), materials (emissive above 1 becomes emissiveFactor x
@@ -23,4 +24,4 @@ void saveGltf(const SceneAsset& scene, const std::filesystem::path& path,
 // Standard base64 with padding.
 std::string base64Encode(const void* data, size_t size);
 
-}  // namespace qlight::scene
+}  // namespace qlight::gltf

@@ -1,10 +1,10 @@
-#include "engine/scene/gltf_accessor.h"
+#include "engine/gltf/gltf_accessor.h"
 
 #include <algorithm>
 #include <cmath>
 #include <cstring>
 
-namespace qlight::scene::detail {
+namespace qlight::gltf::detail {
 namespace {
 
 int componentSize(int componentType) {
@@ -274,4 +274,4 @@ std::vector<uint32_t> readIndexAccessor(const tinygltf::Model& model, int index,
       model, index, 1, [](double v, size_t) { return uint32_t(v); }, ctx);
 }
 
-}  // namespace qlight::scene::detail
+}  // namespace qlight::gltf::detail

@@ -6,10 +6,10 @@
 #include <glm/gtc/quaternion.hpp>
 
 #include "engine/scene/animation.h"
-#include "engine/scene/gltf_loader.h"
+#include "engine/gltf/gltf_loader.h"
 #include "engine/scene/transforms.h"
 
-namespace qlight::scene {
+namespace qlight::gltf {
 namespace {
 
 const std::filesystem::path kSamples = QLIGHT_SAMPLES_DIR;
@@ -208,4 +208,4 @@ TEST(GltfSamples, SimpleMorphAppliesDefaultWeightsAndSkipsTheWeightsChannel) {
 }
 
 }  // namespace
-}  // namespace qlight::scene
+}  // namespace qlight::gltf

@@ -13,10 +13,10 @@
 #include <string>
 #include <vector>
 
-#include "engine/scene/gltf_loader.h"
-#include "engine/scene/gltf_writer.h"
+#include "engine/gltf/gltf_loader.h"
+#include "engine/gltf/gltf_writer.h"
 
-namespace qlight::scene::testing {
+namespace qlight::gltf::testing {
 
 using nlohmann::json;
 
@@ -148,4 +148,4 @@ inline void expectLoadError(const std::filesystem::path& path, const std::string
   }
 }
 
-}  // namespace qlight::scene::testing
+}  // namespace qlight::gltf::testing

@@ -4,7 +4,7 @@
 #include <filesystem>
 #include <vector>
 
-namespace qlight::render {
+namespace qlight::image {
 
 struct LinearImage {
   uint32_t width = 0, height = 0;
@@ -27,4 +27,4 @@ std::vector<uint8_t> toSrgb8(const LinearImage& image, float exposure, Tonemap t
 // Reads a PFM written by writeImage (tests, image comparison tools).
 LinearImage readPfm(const std::filesystem::path& path);
 
-}  // namespace qlight::render
+}  // namespace qlight::image

@@ -1,10 +1,10 @@
-#include "engine/scene/gltf_context.h"
+#include "engine/gltf/gltf_context.h"
 
 #include <algorithm>
 #include <iostream>
 #include <stdexcept>
 
-namespace qlight::scene::detail {
+namespace qlight::gltf::detail {
 
 std::string oneLine(const std::string& text) {
   std::string out;
@@ -32,4 +32,4 @@ void LoadContext::warn(const std::string& problem) {
   warnings_.push_back(std::move(line));
 }
 
-}  // namespace qlight::scene::detail
+}  // namespace qlight::gltf::detail
