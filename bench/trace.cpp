@@ -7,7 +7,7 @@
 
 #include "engine/gpu/gpu_timer.h"
 #include "engine/gpu/pass_recorder.h"
-#include "engine/scene/gltf_loader.h"
+#include "engine/gltf/gltf_loader.h"
 #include "engine/session/offline_render.h"
 #include "engine/session/scene_world.h"
 
@@ -26,7 +26,7 @@ struct Fixture {
   const scene::SceneAsset& scene(const std::string& name) {
     auto it = scenes.find(name);
     if (it == scenes.end())
-      it = scenes.emplace(name, scene::loadGltf(std::string(QLIGHT_SOURCE_DIR) + "/assets/" + name)).first;
+      it = scenes.emplace(name, gltf::loadGltf(std::string(QLIGHT_SOURCE_DIR) + "/assets/" + name)).first;
     return it->second;
   }
 };

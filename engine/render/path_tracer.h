@@ -1,7 +1,9 @@
-// The path tracing passes: trace (one sample per pixel per dispatch) into an
-// accumulation image, with per-frame counters and GPU timings. Accumulation
-// runs while nothing changes and restarts when the camera, the scene or a
-// setting does.
+// The path tracing passes, as a wavefront per sample: begin (camera rays),
+// then per bounce trace (the pending shadow ray and the extension ray) and
+// shade over a GPU work queue of live paths (indirect dispatch), a last trace
+// for the final shadow rays, end (into the accumulation image and the frame's
+// counters). Accumulation runs while nothing changes and restarts when the
+// camera, the scene or a setting does (or fades, with temporal blending).
 #pragma once
 #include <map>
 #include <memory>
