@@ -14,20 +14,12 @@
 #include "game/context_setup.h"
 #include "game/demo_window.h"
 #include "game/flythrough.h"
+#include "game/shipped_scenes.h"
 
 namespace qlight::game {
 namespace {
 
 namespace fs = std::filesystem;
-
-// A scene name resolves against the working directory, then the shipped assets.
-std::string resolveScene(const std::string& name) {
-  if (fs::exists(name)) return name;
-  fs::path shipped = fs::path(QLIGHT_ASSETS_DIR) / name;
-  if (fs::exists(shipped)) return shipped.string();
-  if (fs::exists(shipped.string() + ".gltf")) return shipped.string() + ".gltf";
-  return name;  // the loader reports it missing, naming it
-}
 
 bool displayAvailable() {
   const char* d = std::getenv("DISPLAY");

@@ -1,10 +1,12 @@
 // qlight: a path tracer that learns where light comes from.
 //   qlight render ...   one image, headless
 //   qlight demo ...     the flythrough (a window, or headless frames without a display)
+//   qlight bench ...    guided vs unguided at equal time, with plots and a report
 #include <CLI/CLI.hpp>
 #include <cstdio>
 #include <exception>
 
+#include "game/bench/bench_command.h"
 #include "game/cli_options.h"
 #include "game/demo_command.h"
 #include "game/render_command.h"
@@ -21,13 +23,14 @@ int main(int argc, char** argv) {
                "enable the Khronos validation layer (also QLIGHT_VALIDATION=1)");
   auto render = addRenderCommand(app, common);
   auto demo = addDemoCommand(app, common);
+  auto bench = addBenchCommand(app, common);
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {
     return app.exit(e);
   }
   try {
-    for (auto& run : {render, demo}) {
+    for (auto& run : {render, demo, bench}) {
       int rc = run();
       if (rc >= 0) return rc;
     }

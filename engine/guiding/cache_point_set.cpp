@@ -31,6 +31,10 @@ CachePointSet::CachePointSet(const gpu::Context& ctx, uint32_t budget, float sea
   buckets_->upload(ctx, grid_.buckets.data(), grid_.buckets.size() * 4);
 }
 
+uint64_t CachePointSet::memoryBytes() const {
+  return points_->size() + buckets_->size() + gridPoints_->size();
+}
+
 uint32_t CachePointSet::takeSlot() {
   if (!freeSlots_.empty()) {
     uint32_t slot = freeSlots_.back();  // the lowest: the list is kept highest first

@@ -34,6 +34,7 @@ class CachePointSet {
   float searchRadius() const { return searchRadius_; }
   const PointGrid& grid() const { return grid_; }
 
+  uint64_t memoryBytes() const;  // GPU buffers
   const gpu::BufferView& pointsView() const { return *pointsView_; }
   const gpu::BufferView& gridBucketsView() const { return *bucketsView_; }
   const gpu::BufferView& gridPointsView() const { return *gridPointsView_; }

@@ -53,6 +53,12 @@ void LearnedTable::recordReset(gpu::PassRecorder& rec, float initial, uint64_t f
   fill(*cdf, 0, 4);
 }
 
+uint64_t LearnedTable::memoryBytes() const {
+  return values->size() + visits->size() + cdf->size() + sums->size() + counts->size();
+}
+
+uint64_t LearnedTables::memoryBytes() const { return q_.memoryBytes() + v_.memoryBytes() + pointUpdates_->size(); }
+
 LearnedTables::LearnedTables(const gpu::Context& ctx) : ctx_(ctx), scan_(ctx), update_(ctx, "q_update") {}
 
 void LearnedTables::allocate(uint32_t slots, uint32_t strata, uint32_t lights) {

@@ -26,6 +26,7 @@ struct LearnedTable {
   void allocate(const gpu::Context& ctx, uint64_t slots, uint32_t rowLength, const std::string& name);
   // Fills the rows [first, first + count) with `initial` values and no visits or targets.
   void recordReset(gpu::PassRecorder& rec, float initial, uint64_t first, uint64_t count) const;
+  uint64_t memoryBytes() const;
 };
 
 class LearnedTables {
@@ -45,6 +46,7 @@ class LearnedTables {
   void recordLearning(gpu::PassRecorder& rec, uint32_t rows, const GuidingSettings& settings);
 
   uint32_t lights() const { return lights_; }
+  uint64_t memoryBytes() const;  // GPU buffers
   const LearnedTable& q() const { return q_; }
   const LearnedTable& v() const { return v_; }
   const gpu::Buffer& pointUpdates() const { return *pointUpdates_; }

@@ -82,6 +82,10 @@ void PointGenerator::throwDarts(ecs::Registry& registry, const render::GpuScene&
   }
 }
 
+uint64_t PointGenerator::memoryBytes() const {
+  return spawn_.size() + (candidates_ ? candidates_->size() : 0);
+}
+
 uint32_t PointGenerator::acceptSpawns(ecs::Registry& registry, const PointRadii& radii, CachePointSet& set) {
   if (!acceptor_) return 0;
   // Fixed slots (w = 1 where written this frame), read in slot order: the points added do

@@ -40,6 +40,7 @@ class PointGenerator {
   // Spawns are accepted against the points thrown so far (after the first throwDarts).
   bool spawning() const { return bool(acceptor_); }
   const gpu::Buffer& spawnReports() const { return spawn_; }
+  uint64_t memoryBytes() const;  // GPU buffers
 
  private:
   const gpu::Context& ctx_;

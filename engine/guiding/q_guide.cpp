@@ -136,7 +136,14 @@ render::GuideFeatures QGuide::features() const {
   return f;
 }
 
-void QGuide::recordLearning(gpu::PassRecorder& rec) { tables_.recordLearning(rec, points_->slotEnd(), settings_); }
+void QGuide::recordLearning(gpu::PassRecorder& rec) {
+  if (!settings_.learn) return;  // frozen: no targets were recorded, the tables stand
+  tables_.recordLearning(rec, points_->slotEnd(), settings_);
+}
+
+uint64_t QGuide::memoryBytes() const {
+  return points_->memoryBytes() + tables_.memoryBytes() + generator_.memoryBytes() + uniforms_.size();
+}
 
 GuidingStats QGuide::stats() const {
   GuidingStats s;

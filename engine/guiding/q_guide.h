@@ -46,6 +46,8 @@ class QGuide final : public render::Guide {
   void recordLearning(gpu::PassRecorder& recorder);
 
   GuidingStats stats() const;
+  // GPU memory of the guide's buffers: points, grid, tables, spawn reports, dart candidates.
+  uint64_t memoryBytes() const;
   // Q of the point in `slot` (its strata values), for tests and the UI.
   std::vector<float> readQ(uint32_t slot) const { return tables_.readQ(slot); }
 

@@ -1,0 +1,155 @@
+#include "game/bench/bench_command.h"
+
+#include <chrono>
+#include <cstdio>
+#include <ctime>
+#include <filesystem>
+#include <fstream>
+
+#include "engine/gltf/gltf_loader.h"
+#include "engine/session/stats_json.h"
+#include "game/bench/bench_report.h"
+#include "game/context_setup.h"
+#include "game/shipped_scenes.h"
+
+namespace qlight::game {
+namespace {
+
+namespace fs = std::filesystem;
+using namespace bench;
+
+struct BenchArgs {
+  bool quick = false;
+  std::vector<std::string> scenes;  // empty: every shipped scene
+  std::string out = "out/bench";
+  std::string cache;  // empty: $XDG_CACHE_HOME/qlight or ~/.cache/qlight
+  double budgetSeconds = 0;  // per method and scene; 0: the mode's
+  uint32_t referenceSpp = 0;
+  uint32_t width = 0, height = 0;
+  uint32_t sppPerFrame = 2;
+  bool report = true;
+};
+
+// The quick mode finishes in about a minute on lavapipe (2 cores), the full one in well
+// under an hour for the shipped scenes.
+void applyModeDefaults(BenchArgs& a) {
+  if (a.budgetSeconds == 0) a.budgetSeconds = a.quick ? 2.5 : 40.0;
+  if (a.referenceSpp == 0) a.referenceSpp = a.quick ? 256 : 2048;
+  if (a.width == 0) a.width = a.quick ? 96 : 256;
+  if (a.height == 0) a.height = a.quick ? 54 : 144;
+}
+
+fs::path cacheDirectory(const BenchArgs& a) {
+  if (!a.cache.empty()) return a.cache;
+  if (const char* xdg = std::getenv("XDG_CACHE_HOME"); xdg && *xdg) return fs::path(xdg) / "qlight" / "references";
+  if (const char* home = std::getenv("HOME"); home && *home) return fs::path(home) / ".cache" / "qlight" / "references";
+  return fs::path(a.out) / "reference-cache";
+}
+
+// Bad input gets one line before any rendering.
+void validate(const BenchArgs& a, const std::vector<std::string>& scenes) {
+  if (!(a.budgetSeconds > 0) || !std::isfinite(a.budgetSeconds))
+    throw std::invalid_argument("bench: the time budget must be a positive number of seconds");
+  if (a.referenceSpp < 2) throw std::invalid_argument("bench: the reference needs at least 2 spp");
+  for (const std::string& s : scenes)
+    if (!fs::is_regular_file(s)) throw std::invalid_argument("bench: no scene file " + s);
+  std::error_code ec;
+  fs::create_directories(a.out, ec);
+  std::ofstream probe(fs::path(a.out) / ".write-test");
+  if (ec || !probe) throw std::invalid_argument("bench: cannot write to the output folder " + a.out);
+  probe.close();
+  fs::remove(fs::path(a.out) / ".write-test");
+}
+
+std::string isoDate() {
+  std::time_t now = std::time(nullptr);
+  char text[32];
+  std::strftime(text, sizeof(text), "%Y-%m-%dT%H:%M:%SZ", std::gmtime(&now));
+  return text;
+}
+
+int runBench(BenchArgs a, const CommonOptions& common) {
+  applyModeDefaults(a);
+  std::vector<std::string> scenes;
+  for (const std::string& s : a.scenes) scenes.push_back(resolveScene(s));
+  if (scenes.empty()) scenes = shippedScenes();
+  validate(a, scenes);
+  auto ctx = createContext(common, /*windowed=*/false);
+
+  render::RenderSettings settings;
+  settings.width = a.width;
+  settings.height = a.height;
+  settings.samplesPerFrame = a.sppPerFrame;
+  MethodRunSettings run;
+  run.render = settings;
+  run.budgetSeconds = a.budgetSeconds;
+  const std::vector<MethodSpec> methods = benchMethods(guiding::GuidingSettings{});
+
+  // Progress in units of work: a reference counts 1 (0 when cached), methods their budget.
+  const double perScene = 1.0 + a.budgetSeconds * double(methods.size());
+  ProgressBar progress(perScene * double(scenes.size()));
+  nlohmann::json sceneEntries = nlohmann::json::array();
+  for (size_t i = 0; i < scenes.size(); ++i) {
+    const std::string name = fs::path(scenes[i]).stem().string();
+    const scene::SceneAsset asset = gltf::loadGltf(scenes[i]);
+    SceneBench sb;
+    sb.name = name;
+    sb.file = scenes[i];
+    for (const scene::MeshAsset& m : asset.meshes) sb.triangles += m.triangleCount();
+    const double base = perScene * double(i);
+    sb.reference = loadOrRenderReference(*ctx, asset, scenes[i], settings, a.referenceSpp,
+                                         cacheDirectory(a), progress, base, name);
+    sb.methods = runMethods(*ctx, asset, methods, run, sb.reference.image, progress, base + 1.0, name);
+    sb.lights = sb.methods.front().sceneLights;
+    sceneEntries.push_back(sceneJson(sb, a.out));
+  }
+  progress.finish();
+
+  nlohmann::json j = {{"mode", a.quick ? "quick" : "full"},
+                      {"device", ctx->deviceName()},
+                      {"width", a.width},
+                      {"height", a.height},
+                      {"spp_per_frame", a.sppPerFrame},
+                      {"time_budget_seconds", a.budgetSeconds},
+                      {"reference_spp", a.referenceSpp},
+                      {"renderer_version", rendererVersion()},
+                      {"date", isoDate()},
+                      {"scenes", sceneEntries},
+                      {"traversal", nullptr}};
+  session::writeJson(fs::path(a.out) / "bench.json", j);
+  if (a.report) writeReport(a.out);
+  std::printf("qlight bench: %zu scenes, %zu methods, %.1f s each; %s/report.md\n", scenes.size(),
+              methods.size(), a.budgetSeconds, a.out.c_str());
+  for (const auto& s : sceneEntries) {
+    std::printf("  %-16s", s["name"].get<std::string>().c_str());
+    for (const auto& [method, ratio] : s["headline"]["time_to_unguided_error"].items())
+      std::printf("  %s: time to unguided's error %s", method.c_str(),
+                  ratio.is_null() ? "n/a" : (std::to_string(ratio.get<double>()).substr(0, 5) + "x").c_str());
+    std::printf("\n");
+  }
+  return finishContext(*ctx);
+}
+
+}  // namespace
+
+std::function<int()> addBenchCommand(CLI::App& app, const CommonOptions& common) {
+  auto args = std::make_shared<BenchArgs>();
+  CLI::App* cmd = app.add_subcommand("bench", "guided vs unguided at equal time and equal samples, with plots");
+  cmd->add_flag("--quick", args->quick, "about a minute on lavapipe (small images, short budgets)");
+  cmd->add_option("--scene", args->scenes, "glTF scene or shipped name (repeat; default: every shipped scene)");
+  cmd->add_option("--out", args->out, "output folder (bench.json, report.md, plots/, images/)")->capture_default_str();
+  cmd->add_option("--budget", args->budgetSeconds, "render seconds per method and scene (quick 2.5, full 40)");
+  cmd->add_option("--reference-spp", args->referenceSpp, "reference samples per pixel (quick 256, full 2048)");
+  cmd->add_option("--width", args->width, "image width (quick 96, full 256)")->check(CLI::Range(1, 16384));
+  cmd->add_option("--height", args->height, "image height (quick 54, full 144)")->check(CLI::Range(1, 16384));
+  cmd->add_option("--spp-per-frame", args->sppPerFrame, "samples per pixel per frame (learning runs between frames)")
+      ->check(CLI::Range(1, 4096))->capture_default_str();
+  cmd->add_option("--cache", args->cache, "reference cache folder (default ~/.cache/qlight/references)");
+  cmd->add_flag("!--no-report", args->report, "skip tools/bench_report.py (JSON and images only)");
+  return [cmd, args, &common]() -> int {
+    if (!cmd->parsed()) return -1;
+    return runBench(*args, common);
+  };
+}
+
+}  // namespace qlight::game
