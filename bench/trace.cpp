@@ -10,6 +10,7 @@
 #include "engine/gltf/gltf_loader.h"
 #include "engine/session/offline_render.h"
 #include "engine/session/scene_world.h"
+#include "shaders/shared/trace_bench.h"
 
 namespace {
 
@@ -64,7 +65,7 @@ void BM_Traversal(benchmark::State& state) {
   u.seed = 1;
   uniforms.upload(*f.ctx, &u, sizeof(u));
   gpu::GpuTimer timer(*f.ctx);
-  struct Push { uint32_t rayCount, mode, pad0, pad1; } push{rays, mode, 0, 0};
+  shared::TraceBenchPush push{rays, mode, 0, 0};
   for (auto _ : state) {
     f.ctx->submitAndWait([&](VkCommandBuffer cmd) {
       timer.reset(cmd);

@@ -4,6 +4,8 @@
 
 #include <algorithm>
 
+#include "shaders/shared/strata.h"
+
 namespace qlight::game {
 
 GuidingPanelResult drawGuidingSection(guiding::GuidingSettings& s, const guiding::GuidingStats& st) {
@@ -16,7 +18,7 @@ GuidingPanelResult drawGuidingSection(guiding::GuidingSettings& s, const guiding
   ImGui::SliderInt("strata rows", &rows, 1, 32);
   ImGui::SliderInt("strata cols", &cols, 1, 32);
   s.rows = uint32_t(rows);
-  s.cols = uint32_t(std::min(cols, 1024 / rows));  // R x C <= 1024 (one CDF segment)
+  s.cols = uint32_t(std::min(cols, int(shared::kMaxStrata) / rows));  // R x C <= kMaxStrata
   ImGui::SliderFloat("alpha min", &s.alphaMin, 1e-5f, 0.5f, "%.5f", ImGuiSliderFlags_Logarithmic);
   ImGui::SliderFloat("alpha max", &s.alphaMax, 1e-4f, 1.0f, "%.4f", ImGuiSliderFlags_Logarithmic);
   s.alphaMax = std::max(s.alphaMax, s.alphaMin);

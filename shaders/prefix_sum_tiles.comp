@@ -6,8 +6,8 @@
 #include "shared/prefix_sum.h"
 
 layout(local_size_x = QL_SCAN_GROUP_SIZE) in;
-layout(binding = 0, scalar) buffer Values { float values[]; };
-layout(binding = 1, scalar) writeonly buffer TileSums { float tileSums[]; };
+layout(binding = QL_SCAN_BIND_VALUES, scalar) buffer Values { float values[]; };
+layout(binding = QL_SCAN_BIND_TILE_SUMS, scalar) writeonly buffer TileSums { float tileSums[]; };
 layout(push_constant, scalar) uniform Push { PrefixSumPush pc; };
 
 shared float sTotal[QL_SCAN_GROUP_SIZE];

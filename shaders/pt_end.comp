@@ -19,10 +19,10 @@ void main() {
   uvec4 counters = uvec4(0u);
   uint invalid = 0u;
   if (inside) {
-    vec4 t3 = pathTexel(path, 3u);
-    flags = floatBitsToUint(t3.w);
-    counters = floatBitsToUint(pathTexel(path, 9u));
-    vec3 radiance = t3.xyz;
+    vec4 radianceFlags = pathTexel(path, kPathTexelRadianceFlags);
+    flags = floatBitsToUint(radianceFlags.w);
+    counters = floatBitsToUint(pathTexel(path, kPathTexelCounters));
+    vec3 radiance = radianceFlags.xyz;
     if (any(isnan(radiance)) || any(isinf(radiance))) {
       radiance = vec3(0.0);
       invalid = 1u;

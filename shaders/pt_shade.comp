@@ -1,13 +1,56 @@
 #version 460
-// Wavefront pass 3: shades each path's hit at depth pc.bounce. Emission (MIS
-// weighted), the vertex's cache point (found once: it completes the previous
-// vertex's Q update and guides this one), NEE with learned light choice
-// (its shadow ray is traced by the next trace pass), then the next direction
-// from the guided/BSDF mixture, Russian roulette.
+// Wavefront pass 3: shades each queued path's hit at depth pc.bounce, one step
+// per function (main lists them): emission reached by the ray, the vertex's
+// cache point, NEE (its shadow ray is traced by the next trace pass), the next
+// direction from the guided/BSDF mixture, Russian roulette, and the survivors
+// queued for the next trace.
+//
+// On lavapipe both sides of every branch execute, so the kUse* guards
+// (specialization constants, include/features.glsl) must stay where they are:
+// they remove the code of the features a frame does not use.
 #extension GL_GOOGLE_include_directive : require
 #include "include/path_common.glsl"
 #include "include/path_queue.glsl"
 layout(binding = QL_BIND_QUEUE_OUT, scalar) writeonly buffer QueueOut { uint queueOut[]; };
+
+// The frame's estimator and guiding switches.
+struct Switches {
+  bool nee;          // sample a light at every vertex
+  bool emitterHits;  // scattered rays that reach an emitter count
+  bool mis;          // both, weighted by the power heuristic
+  bool learn;        // record Q-learning targets
+  bool guide;        // sample from the learned distributions
+  bool usePoints;    // look up the vertex's cache point (for any of the above, or to spawn one)
+};
+
+Switches frameSwitches() {
+  Switches sw;
+  sw.nee = (frame.flags & kFlagNee) != 0u && frame.lightCount > 0u;
+  sw.emitterHits = (frame.flags & kFlagEmitterHits) != 0u;
+  sw.mis = (frame.flags & kFlagMis) != 0u && sw.nee && sw.emitterHits;
+  sw.learn = (guiding.flags & kGuideLearn) != 0u;
+  sw.guide = (guiding.flags & kGuideSample) != 0u;
+  sw.usePoints = kUseGuiding &&
+                 (sw.learn || sw.guide || (guiding.flags & (kGuideLightLearn | kGuideSpawn)) != 0u);
+  return sw;
+}
+
+// A hit as a scattering vertex.
+struct Vertex {
+  Surface s;
+  BsdfParams bsdf;
+  TangentFrame tf;  // shading frame
+  vec3 ns;          // its normal
+  vec3 wo;          // toward the previous vertex, in tf
+};
+
+// The vertex's direction mixture: the cache point's learned distribution with
+// probability guideShare, else the BSDF.
+struct ScatterMix {
+  uint point;       // kNoCachePoint: BSDF only
+  TangentFrame pf;  // the point's frame (its strata), else the shading frame
+  float guideShare;
+};
 
 // Light selection: by power, mixed with the learned V(point, light) when on.
 float lightSelectionPdf(uint point, uint light) {
@@ -30,157 +73,226 @@ uint chooseLight(uint point, float u, out float selectPdf) {
   return light;
 }
 
+// The ray left the scene: only the sky fallback light lives at infinity (it
+// is the last light). Its luminance completes the previous vertex's Q update.
+void shadeEscaped(inout PathState st, Switches sw) {
+  float skyLuminance = 0.0;
+  uint last = frame.lightCount - 1u;
+  if (kUseNonTriangleLights && frame.lightCount > 0u && lights[last].type == kLightSky) {
+    float w = 1.0;
+    if (pc.bounce > 0u) {  // camera rays see the sky unweighted
+      if (!sw.emitterHits) w = 0.0;
+      else if (sw.mis) {
+        float lightPdf = skyLightPdf(lightSelectionPdf(st.prevPoint, last));
+        w = powerHeuristic(1.0, st.prevScatterPdf, 1.0, lightPdf);
+      }
+      st.flags |= kPathEmitterHit;
+    }
+    st.radiance += st.throughput * lights[last].emission * w;
+    skyLuminance = luminance(lights[last].emission);
+  }
+  if (kUseGuiding && sw.learn) recordQTarget(st.prevEntry, skyLuminance);
+}
+
+Surface hitSurface(PathState st) {
+  BvhHit hit;
+  hit.t = st.hitT;
+  hit.u = st.hitU;
+  hit.v = st.hitV;
+  hit.instance = st.hitInstance;
+  hit.primitive = st.hitPrimitive;
+  return resolveSurface(hit, st.origin, st.dir);
+}
+
+// Emission at the hit; after the camera ray, MIS-weighted against NEE having
+// chosen the same light at the previous vertex. Returns the unweighted value.
+vec3 addEmission(inout PathState st, Surface s, Switches sw) {
+  vec3 le = surfaceEmission(s);
+  if (le != vec3(0.0)) {
+    float w = 1.0;
+    if (pc.bounce > 0u) {
+      if (!sw.emitterHits) w = 0.0;
+      else if (sw.mis) {
+        uint li = triangleAt(s.triangle).light;
+        float lightPdf = li == kNoLight ? 0.0
+                       : triangleLightPdf(lights[li], lightSelectionPdf(st.prevPoint, li), st.dir,
+                                          st.hitT * length(st.dir));
+        w = powerHeuristic(1.0, st.prevScatterPdf, 1.0, lightPdf);
+      }
+      st.flags |= kPathEmitterHit;
+    }
+    st.radiance += st.throughput * le * w;
+  }
+  return le;
+}
+
+Vertex scatteringVertex(Surface s, vec3 dir) {
+  Vertex v;
+  v.s = s;
+  v.bsdf = surfaceBsdf(s);
+  v.ns = s.shadingNormal;
+  if (dot(v.ns, -dir) <= 0.0) v.ns = s.geometricNormal;  // shading normal faces away: fall back
+  v.tf = frameFromNormal(v.ns);
+  v.wo = localFromWorld(v.tf, -dir);
+  return v;
+}
+
+// The vertex's cache point, found once: it completes the previous vertex's Q
+// update (emission plus the radiance Q says the vertex scatters, D&K eq. 5)
+// and guides this one. Camera hits that no point covers are reported as
+// candidates for new points.
+uint lookupCachePoint(inout PathState st, uint path, Vertex v, vec3 le, Switches sw) {
+  uint point = sw.usePoints ? findCachePoint(v.s.position, v.s.geometricNormal) : kNoCachePoint;
+  if (point != kNoCachePoint) {
+    if (pc.bounce < frame.maxDepth) st.covered++;
+    if (sw.learn && st.prevEntry != kNoCachePoint)
+      recordQTarget(st.prevEntry,
+                    luminance(le) + scatteredEstimate(point, v.bsdf, v.wo, -st.dir, v.ns));
+  } else if (sw.usePoints && pc.bounce == 0u && (guiding.flags & kGuideSpawn) != 0u) {
+    reportUncovered(path, pc.pathCount, frame.frameIndex + pc.sampleIndex, v.s.position,
+                    v.s.geometricNormal);
+  }
+  return point;
+}
+
+// A point guides at a share that shrinks with the BSDF's specular part (which
+// the strata cannot resolve) and with too few updates for its Q to be trusted.
+ScatterMix scatterMix(uint point, Vertex v, Switches sw) {
+  ScatterMix m;
+  m.point = point;
+  m.pf = point != kNoCachePoint ? pointFrame(point) : v.tf;
+  m.guideShare = kUseGuiding && sw.guide && point != kNoCachePoint
+                     ? guiding.selectProbability * (1.0 - bsdfSpecularProbability(v.bsdf, v.wo)) *
+                           pointConfidence(point)
+                     : 0.0;
+  return m;
+}
+
+// The density with which the mixture produces direction wi, whichever
+// technique did: MIS and the throughput need it.
+float mixturePdf(ScatterMix m, Vertex v, vec3 wiLocal, vec3 wiWorld) {
+  float pdf = (1.0 - m.guideShare) * bsdfPdf(v.bsdf, v.wo, wiLocal);
+  if (m.guideShare > 0.0) pdf += m.guideShare * guidedPdfWorld(m.point, m.pf, wiWorld);
+  return pdf;
+}
+
+// NEE: one light sample, MIS-weighted against the scatter mixture. The next
+// trace pass traces its shadow ray; with light learning, the light's value
+// target is recorded there if unoccluded, or here (0) when there is no ray.
+void sampleDirectLight(inout PathState st, inout Rng rng, Vertex v, ScatterMix m, vec3 p,
+                       bool mis) {
+  float selectPdf;
+  uint li = chooseLight(m.point, rngNextFloat(rng), selectPdf);
+  LightSample ls = sampleLight(v.s.position, rngNext2(rng), li, selectPdf);
+  vec3 wi = localFromWorld(v.tf, ls.direction);
+  bool valid = ls.pdf > 0.0 && wi.z > 0.0 && dot(ls.direction, v.s.geometricNormal) > 0.0 &&
+               ls.radiance != vec3(0.0);
+  vec3 contribution = vec3(0.0);
+  float target = 0.0;  // f cos L / pdf(point on light | light), if unoccluded
+  if (valid) {
+    vec3 f = bsdfEval(v.bsdf, v.wo, wi) * wi.z;
+    target = luminance(f * ls.radiance * (selectPdf / ls.pdf));
+    float scatterPdf = mixturePdf(m, v, wi, ls.direction);
+    float w = ls.delta || !mis ? 1.0 : powerHeuristic(1.0, ls.pdf, 1.0, scatterPdf);
+    contribution = st.throughput * f * ls.radiance * (w / ls.pdf);
+  }
+  bool learnLight = lightLearningOn(m.point);
+  if (contribution != vec3(0.0)) {
+    st.flags |= kPathShadowPending;
+    st.shadowOrigin = p;
+    st.shadowDir = ls.direction;
+    st.shadowTMax = ls.distance >= kInfinity ? kInfinity : ls.distance * (1.0 - 1e-4);
+    st.shadowContribution = contribution;
+    st.shadowTarget = target;
+    st.shadowPoint = learnLight ? m.point : kNoCachePoint;
+    st.shadowLight = li;
+  } else if (learnLight) {
+    recordVTarget(m.point, li, 0.0);
+  }
+}
+
+// The next direction from the mixture, and the path moved onto it. Returns
+// false when no usable direction came out (the path ends).
+bool sampleScatter(inout PathState st, inout Rng rng, Vertex v, ScatterMix m, vec3 p, bool learn) {
+  vec3 wiWorld = vec3(0.0);
+  bool sampled;
+  if (rngNextFloat(rng) < m.guideShare) {
+    vec3 local;
+    float guidedPdfValue;
+    sampled = sampleGuided(m.point * strataCount(), rngNext3(rng), guiding.rows, guiding.cols, local,
+                           guidedPdfValue);
+    wiWorld = worldFromLocal(m.pf, local);
+  } else {
+    vec3 local;
+    float bsdfPdfValue;
+    sampled = bsdfSample(v.bsdf, v.wo, rngNext3(rng), local, bsdfPdfValue);
+    wiWorld = worldFromLocal(v.tf, local);
+  }
+  vec3 wiLocal = localFromWorld(v.tf, wiWorld);
+  float pdf = 0.0;
+  // Directions under either the shading or the geometric surface are lost.
+  if (sampled && wiLocal.z > 0.0 && dot(wiWorld, v.s.geometricNormal) > 0.0)
+    pdf = mixturePdf(m, v, wiLocal, wiWorld);
+  bool moved = pdf > 0.0;
+  if (moved) {
+    st.throughput *= bsdfEval(v.bsdf, v.wo, wiLocal) * (wiLocal.z / pdf);
+    st.prevScatterPdf = pdf;
+    st.prevPoint = m.point;
+    // The Q entry this direction updates once the next vertex is known.
+    st.prevEntry = learn && m.point != kNoCachePoint ? qEntry(m.point, m.pf, wiWorld) : kNoCachePoint;
+    st.origin = p;
+    st.dir = wiWorld;
+  }
+  return moved;
+}
+
+// From depth 2 on, a path survives with probability ~ its throughput;
+// survivors are reweighted, so the estimate stays unbiased.
+bool survivesRoulette(inout PathState st, inout Rng rng) {
+  bool survives = true;
+  if ((frame.flags & kFlagRussianRoulette) != 0u && pc.bounce >= 2u) {
+    float survive = min(max(st.throughput.r, max(st.throughput.g, st.throughput.b)), 0.95);
+    if (rngNextFloat(rng) >= survive) survives = false;
+    else st.throughput /= survive;
+  }
+  return survives;
+}
+
+// Survivors, and paths that still have a shadow ray, go to the next trace.
+void enqueueSurvivor(uint path, uint flags) {
+  if ((flags & (kPathAlive | kPathShadowPending)) != 0u)
+    queueOut[atomicAdd(queues[(pc.bounce + 1u) & 1u].count, 1u)] = path;
+}
+
 void main() {
   uint path = queuedPath(gl_GlobalInvocationID.x);
-  if (path == 0xffffffffu) return;
-  if ((floatBitsToUint(pathTexel(path, 3u).w) & kPathAlive) == 0u) return;
+  if (path == kNoPath) return;
+  // Dead paths are queued for their last shadow ray only: trace has done it.
+  if ((floatBitsToUint(pathTexel(path, kPathTexelRadianceFlags).w) & kPathAlive) == 0u) return;
   PathState st = loadPath(path);
   Rng rng;
   rng.state = st.rng;
-  uint depth = pc.bounce;
-  bool nee = (frame.flags & kFlagNee) != 0u && frame.lightCount > 0u;
-  bool emitterHits = (frame.flags & kFlagEmitterHits) != 0u;
-  bool mis = (frame.flags & kFlagMis) != 0u && nee && emitterHits;
-  bool learn = (guiding.flags & kGuideLearn) != 0u;
-  bool guide = (guiding.flags & kGuideSample) != 0u;
-  bool usePoints = kUseGuiding && (learn || guide || (guiding.flags & (kGuideLightLearn | kGuideSpawn)) != 0u);
-  bool alive = false;  // set when the path scatters on
-
+  Switches sw = frameSwitches();
+  bool alive = false;
   if (st.hitT < 0.0) {
-    // Only the sky fallback light lives at infinity; it is the last light.
-    float skyLuminance = 0.0;
-    uint last = frame.lightCount - 1u;
-    if (kUseNonTriangleLights && frame.lightCount > 0u && lights[last].type == kLightSky) {
-      float w = 1.0;
-      if (depth > 0u) {
-        if (!emitterHits) w = 0.0;
-        else if (mis) w = powerHeuristic(1.0, st.prevScatterPdf, 1.0, skyLightPdf(lightSelectionPdf(st.prevPoint, last)));
-        st.flags |= kPathEmitterHit;
-      }
-      st.radiance += st.throughput * lights[last].emission * w;
-      skyLuminance = luminance(lights[last].emission);
-    }
-    if (kUseGuiding && learn) recordQTarget(st.prevEntry, skyLuminance);
+    shadeEscaped(st, sw);
   } else {
-    BvhHit hit;
-    hit.t = st.hitT;
-    hit.u = st.hitU;
-    hit.v = st.hitV;
-    hit.instance = st.hitInstance;
-    hit.primitive = st.hitPrimitive;
-    vec3 dir = st.dir;
-    Surface s = resolveSurface(hit, st.origin, dir);
-    vec3 le = surfaceEmission(s);
-    if (le != vec3(0.0)) {
-      float w = 1.0;
-      if (depth > 0u) {
-        if (!emitterHits) w = 0.0;
-        else if (mis) {
-          uint li = triangleAt(s.triangle).light;
-          float lightPdf = li == kNoLight ? 0.0
-              : triangleLightPdf(lights[li], lightSelectionPdf(st.prevPoint, li), dir, hit.t * length(dir));
-          w = powerHeuristic(1.0, st.prevScatterPdf, 1.0, lightPdf);
-        }
-        st.flags |= kPathEmitterHit;
-      }
-      st.radiance += st.throughput * le * w;
-    }
-
-    BsdfParams bsdf = surfaceBsdf(s);
-    vec3 ns = s.shadingNormal;
-    if (dot(ns, -dir) <= 0.0) ns = s.geometricNormal;  // shading normal faces away: fall back
-    TangentFrame tf = frameFromNormal(ns);
-    vec3 wo = localFromWorld(tf, -dir);
-
-    uint point = usePoints ? findCachePoint(s.position, s.geometricNormal) : kNoCachePoint;
-    if (point != kNoCachePoint) {
-      if (depth < frame.maxDepth) st.covered++;
-      if (learn && st.prevEntry != kNoCachePoint)
-        recordQTarget(st.prevEntry, luminance(le) + scatteredEstimate(point, bsdf, wo, -dir, ns));
-    } else if (usePoints && depth == 0u && (guiding.flags & kGuideSpawn) != 0u) {
-      reportUncovered(path, pc.pathCount, frame.frameIndex + pc.sampleIndex, s.position, s.geometricNormal);
-    }
-
-    if (depth < frame.maxDepth) {
-      if ((st.flags & kPathEmitterHit) == 0u) st.vertices++;  // up to the first emitter reached (D&K)
-      TangentFrame pf = point != kNoCachePoint ? pointFrame(point) : tf;
-      float guideShare = kUseGuiding && guide && point != kNoCachePoint
-          ? guiding.selectProbability * (1.0 - bsdfSpecularProbability(bsdf, wo)) * pointConfidence(point)
-          : 0.0;
+    Surface s = hitSurface(st);
+    vec3 le = addEmission(st, s, sw);
+    Vertex v = scatteringVertex(s, st.dir);
+    uint point = lookupCachePoint(st, path, v, le, sw);
+    if (pc.bounce < frame.maxDepth) {
+      // D&K's path length: vertices up to the first emitter reached.
+      if ((st.flags & kPathEmitterHit) == 0u) st.vertices++;
+      ScatterMix m = scatterMix(point, v, sw);
       vec3 p = offsetRayOrigin(s.position, s.geometricNormal);
-
-      if (nee) {
-        float selectPdf;
-        uint li = chooseLight(point, rngNextFloat(rng), selectPdf);
-        LightSample ls = sampleLight(s.position, rngNext2(rng), li, selectPdf);
-        vec3 wi = localFromWorld(tf, ls.direction);
-        bool valid = ls.pdf > 0.0 && wi.z > 0.0 && dot(ls.direction, s.geometricNormal) > 0.0 &&
-                     ls.radiance != vec3(0.0);
-        vec3 contribution = vec3(0.0);
-        float target = 0.0;  // f cos L / pdf(point on light | light), if unoccluded
-        if (valid) {
-          vec3 f = bsdfEval(bsdf, wo, wi) * wi.z;
-          target = luminance(f * ls.radiance * (selectPdf / ls.pdf));
-          float scatterPdf = (1.0 - guideShare) * bsdfPdf(bsdf, wo, wi);
-          if (guideShare > 0.0) scatterPdf += guideShare * guidedPdfWorld(point, pf, ls.direction);
-          float w = ls.delta || !mis ? 1.0 : powerHeuristic(1.0, ls.pdf, 1.0, scatterPdf);
-          contribution = st.throughput * f * ls.radiance * (w / ls.pdf);
-        }
-        bool learnLight = lightLearningOn(point);
-        if (contribution != vec3(0.0)) {  // the next trace pass traces the shadow ray
-          st.flags |= kPathShadowPending;
-          st.shadowOrigin = p;
-          st.shadowDir = ls.direction;
-          st.shadowTMax = ls.distance >= kInfinity ? kInfinity : ls.distance * (1.0 - 1e-4);
-          st.shadowContribution = contribution;
-          st.shadowTarget = target;
-          st.shadowPoint = learnLight ? point : kNoCachePoint;
-          st.shadowLight = li;
-        } else if (learnLight) {
-          recordVTarget(point, li, 0.0);
-        }
-      }
-
-      // Scatter: the learned distribution with probability guideShare, else the BSDF.
-      vec3 wiWorld = vec3(0.0);
-      bool sampled;
-      if (rngNextFloat(rng) < guideShare) {
-        vec3 local;
-        float guidedPdfValue;
-        sampled = sampleGuided(point * strataCount(), rngNext3(rng), guiding.rows, guiding.cols, local, guidedPdfValue);
-        wiWorld = worldFromLocal(pf, local);
-      } else {
-        vec3 local;
-        float bsdfPdfValue;
-        sampled = bsdfSample(bsdf, wo, rngNext3(rng), local, bsdfPdfValue);
-        wiWorld = worldFromLocal(tf, local);
-      }
-      vec3 wiLocal = localFromWorld(tf, wiWorld);
-      float pdf = 0.0;
-      if (sampled && wiLocal.z > 0.0 && dot(wiWorld, s.geometricNormal) > 0.0) {  // not under the surface
-        pdf = (1.0 - guideShare) * bsdfPdf(bsdf, wo, wiLocal);
-        if (guideShare > 0.0) pdf += guideShare * guidedPdfWorld(point, pf, wiWorld);
-      }
-      if (pdf > 0.0) {
-        st.throughput *= bsdfEval(bsdf, wo, wiLocal) * (wiLocal.z / pdf);
-        st.prevScatterPdf = pdf;
-        st.prevPoint = point;
-        st.prevEntry = learn && point != kNoCachePoint ? qEntry(point, pf, wiWorld) : kNoCachePoint;
-        alive = true;
-        if ((frame.flags & kFlagRussianRoulette) != 0u && depth >= 2u) {
-          float survive = min(max(st.throughput.r, max(st.throughput.g, st.throughput.b)), 0.95);
-          if (rngNextFloat(rng) >= survive) alive = false;
-          else st.throughput /= survive;
-        }
-        st.origin = p;
-        st.dir = wiWorld;
-      }
+      if (sw.nee) sampleDirectLight(st, rng, v, m, p, sw.mis);
+      alive = sampleScatter(st, rng, v, m, p, sw.learn);
+      if (alive) alive = survivesRoulette(st, rng);
     }
   }
   st.flags = alive ? (st.flags | kPathAlive) : (st.flags & ~kPathAlive);
   st.rng = rng.state;
   storePath(path, st);
-  // Survivors, and paths that still have a shadow ray, go to the next trace.
-  if ((st.flags & (kPathAlive | kPathShadowPending)) != 0u)
-    queueOut[atomicAdd(queues[(pc.bounce + 1u) & 1u].count, 1u)] = path;
+  enqueueSurvivor(path, st.flags);
 }

@@ -8,12 +8,13 @@
 #include "shared/strata.h"
 
 layout(local_size_x = 256) in;
-layout(binding = 0, scalar) buffer Values { float values[]; };
-layout(binding = 1, scalar) buffer Visits { uint visits[]; };
-layout(binding = 2, scalar) writeonly buffer Weights { float weights[]; };
-layout(binding = 3, scalar) buffer Sums { uint sums[]; };  // fixed point (lo, hi) pairs
-layout(binding = 4, scalar) buffer Counts { uint counts[]; };
-layout(binding = 5, scalar) buffer PointUpdates { uint pointUpdates[]; };  // per point (Q table only)
+layout(binding = QL_Q_UPDATE_BIND_VALUES, scalar) buffer Values { float values[]; };
+layout(binding = QL_Q_UPDATE_BIND_VISITS, scalar) buffer Visits { uint visits[]; };
+layout(binding = QL_Q_UPDATE_BIND_WEIGHTS, scalar) writeonly buffer Weights { float weights[]; };
+layout(binding = QL_Q_UPDATE_BIND_SUMS, scalar) buffer Sums { uint sums[]; };  // fixed point (lo, hi) pairs
+layout(binding = QL_Q_UPDATE_BIND_COUNTS, scalar) buffer Counts { uint counts[]; };
+// Updates per point (Q table only).
+layout(binding = QL_Q_UPDATE_BIND_POINT_UPDATES, scalar) buffer PointUpdates { uint pointUpdates[]; };
 layout(push_constant, scalar) uniform Push { TableUpdatePush pc; };
 
 void main() {

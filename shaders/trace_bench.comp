@@ -9,13 +9,14 @@
 #include "shared/sampling.h"
 #include "shared/bsdf.h"
 #include "shared/tonemap.h"
+#include "shared/trace_bench.h"
 #include "include/scene_access.glsl"
 #include "include/lights.glsl"
 
 layout(local_size_x = 64) in;
 layout(binding = QL_BIND_FRAME, scalar) readonly buffer Frame { FrameUniforms frame; };
 layout(binding = QL_BIND_STATS) buffer Stats { uint stats[]; };
-layout(push_constant, scalar) uniform Push { uint rayCount; uint mode; uint pad0, pad1; } pc;
+layout(push_constant, scalar) uniform Push { TraceBenchPush pc; };
 
 void main() {
   uint id = gl_GlobalInvocationID.x;

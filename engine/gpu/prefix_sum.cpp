@@ -3,11 +3,18 @@
 #include <stdexcept>
 
 #include "shaders/shared/prefix_sum.h"
+#include "shaders/shared/strata.h"
 
 namespace qlight::gpu {
 
 using shared::kScanTileElements;
 using shared::PrefixSumPush;
+
+// A segment must fit one tile (no carry crosses tiles), and a cache point's
+// strata are one segment of the Q CDF scan.
+static_assert(PrefixSum::kMaxSegmentLength <= kScanTileElements, "a segment must fit a scan tile");
+static_assert(PrefixSum::kMaxSegmentLength >= shared::kMaxStrata,
+              "a point's strata must fit one segment");
 
 PrefixSum::PrefixSum(const Context& ctx)
     : ctx_(ctx),
@@ -31,10 +38,18 @@ void PrefixSum::scanLevel(PassRecorder& recorder, const Buffer& data, uint32_t c
   uint32_t tiles = (count + kScanTileElements - 1) / kScanTileElements;
   const Buffer& sums = tileSums(level, tiles);
   PrefixSumPush push{count, 0, kScanTileElements, 0};
-  recorder.pass("prefix_sum.tiles", tilesPipeline_).write(0, data).write(1, sums).push(push).dispatch(tiles);
+  recorder.pass("prefix_sum.tiles", tilesPipeline_)
+      .write(QL_SCAN_BIND_VALUES, data)
+      .write(QL_SCAN_BIND_TILE_SUMS, sums)
+      .push(push)
+      .dispatch(tiles);
   if (tiles == 1) return;
   scanLevel(recorder, sums, tiles, level + 1);
-  recorder.pass("prefix_sum.add", addPipeline_).write(0, data).read(1, sums).push(push).dispatchThreads(count);
+  recorder.pass("prefix_sum.add", addPipeline_)
+      .write(QL_SCAN_BIND_VALUES, data)
+      .read(QL_SCAN_BIND_TILE_SUMS, sums)
+      .push(push)
+      .dispatchThreads(count);
 }
 
 void PrefixSum::scan(PassRecorder& recorder, const Buffer& data, uint32_t count) {
@@ -58,7 +73,11 @@ void PrefixSum::scanSegments(PassRecorder& recorder, const Buffer& data, uint32_
   uint32_t tiles = (segmentCount + segmentsPerTile - 1) / segmentsPerTile;
   const Buffer& sums = tileSums(0, tiles);
   PrefixSumPush push{uint32_t(count), segmentLength, tileElements, 0};
-  recorder.pass("prefix_sum.segments", tilesPipeline_).write(0, data).write(1, sums).push(push).dispatch(tiles);
+  recorder.pass("prefix_sum.segments", tilesPipeline_)
+      .write(QL_SCAN_BIND_VALUES, data)
+      .write(QL_SCAN_BIND_TILE_SUMS, sums)
+      .push(push)
+      .dispatch(tiles);
 }
 
 }  // namespace qlight::gpu

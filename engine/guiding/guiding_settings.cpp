@@ -3,14 +3,15 @@
 #include <cmath>
 #include <stdexcept>
 
-#include "engine/gpu/prefix_sum.h"
+#include "shaders/shared/strata.h"
 
 namespace qlight::guiding {
 
 void validate(const GuidingSettings& s) {
   auto finite = [](float v) { return std::isfinite(v); };
-  if (s.rows == 0 || s.cols == 0 || s.strata() > gpu::PrefixSum::kMaxSegmentLength)
-    throw std::invalid_argument("strata must be RxC with 1 <= R*C <= 1024");
+  if (s.rows == 0 || s.cols == 0 || s.strata() > shared::kMaxStrata)
+    throw std::invalid_argument("strata must be RxC with 1 <= R*C <= " +
+                                std::to_string(shared::kMaxStrata));
   if (!finite(s.alphaMin) || !finite(s.alphaMax) || s.alphaMin <= 0 || s.alphaMax > 1 ||
       s.alphaMin > s.alphaMax)
     throw std::invalid_argument("learning rate bounds must satisfy 0 < alpha-min <= alpha-max <= 1");

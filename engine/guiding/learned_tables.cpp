@@ -104,12 +104,12 @@ void LearnedTables::recordTables(gpu::PassRecorder& rec, uint32_t rows, const Gu
     shared::TableUpdatePush push{rows * table.rowLength, table.rowLength, settings.rows, settings.cols,
                                  cosine ? 1u : 0u, settings.alphaMin, settings.alphaMax, settings.qFloor};
     rec.pass(name, update_)
-        .write(0, *table.values)
-        .write(1, *table.visits)
-        .write(2, *table.cdf)
-        .write(3, *table.sums)
-        .write(4, *table.counts)
-        .write(5, *pointUpdates_)
+        .write(QL_Q_UPDATE_BIND_VALUES, *table.values)
+        .write(QL_Q_UPDATE_BIND_VISITS, *table.visits)
+        .write(QL_Q_UPDATE_BIND_WEIGHTS, *table.cdf)
+        .write(QL_Q_UPDATE_BIND_SUMS, *table.sums)
+        .write(QL_Q_UPDATE_BIND_COUNTS, *table.counts)
+        .write(QL_Q_UPDATE_BIND_POINT_UPDATES, *pointUpdates_)
         .push(push)
         .dispatchThreads(push.entries);
   };

@@ -1,9 +1,12 @@
 #include "engine/render/path_tracer.h"
 
 #include <cmath>
+#include <cstddef>
 #include <stdexcept>
 
 #include "engine/gpu/pass_recorder.h"
+#include "shaders/shared/accum_decay.h"
+#include "shaders/shared/specialization.h"
 
 namespace qlight::render {
 
@@ -68,9 +71,15 @@ void PathTracer::resetAccumulation() {
 
 const gpu::ComputePipeline& PathTracer::shadeVariant(const GpuScene& scene,
                                                      const GuideFeatures& guide) {
-  // Specialization constants 3..6 of shaders/include/features.glsl.
-  std::vector<uint32_t> features = {0, 0, 0, scene.hasTextures(), guide.points, guide.lightLearning, scene.hasNonTriangleLights()};
-  uint32_t key = features[3] | features[4] << 1 | features[5] << 2 | features[6] << 3;
+  // Specialization constants of shaders/include/features.glsl.
+  std::vector<uint32_t> features(shared::kSpecPathFeatureCount, 0);
+  features[shared::kSpecUseTextures] = scene.hasTextures();
+  features[shared::kSpecUseGuiding] = guide.points;
+  features[shared::kSpecUseLightLearning] = guide.lightLearning;
+  features[shared::kSpecUseNonTriangleLights] = scene.hasNonTriangleLights();
+  uint32_t key = 0;  // one bit per feature
+  for (uint32_t id = shared::kSpecUseTextures; id < features.size(); ++id)
+    key |= features[id] << (id - shared::kSpecUseTextures);
   auto& slot = shadeVariants_[key];
   if (!slot) slot = std::make_unique<gpu::ComputePipeline>(ctx_, "pt_shade", features);
   return *slot;
@@ -100,8 +109,11 @@ void PathTracer::recordFrame(gpu::PassRecorder& rec, const GpuScene& scene,
     clearPending_ = false;
     pendingFade_ = 1.0f;
   } else if (pendingFade_ < 1.0f) {
-    struct { float factor; uint32_t width, height, pad; } push{pendingFade_, settings_.width, settings_.height, 0};
-    rec.pass("accumulate.fade", decay_).write(0, *accum_).push(push).dispatchThreads(settings_.width, settings_.height);
+    shared::AccumDecayPush push{pendingFade_, settings_.width, settings_.height, 0};
+    rec.pass("accumulate.fade", decay_)
+        .write(QL_ACCUM_DECAY_BIND_ACCUM, *accum_)
+        .push(push)
+        .dispatchThreads(settings_.width, settings_.height);
     pendingFade_ = 1.0f;
   }
   rec.fill("stats.clear", stats_, 0);
@@ -153,7 +165,8 @@ void PathTracer::recordFrame(gpu::PassRecorder& rec, const GpuScene& scene,
   auto queued = [&](gpu::PassBuilder p, uint32_t bounce) {
     p.read(QL_BIND_QUEUE_IN, *queueIds_[bounce & 1])
         .write(QL_BIND_QUEUE_STATE, queueState_)
-        .dispatchIndirect(queueState_, (bounce & 1) * sizeof(shared::QueueState) + 4);
+        .dispatchIndirect(queueState_, (bounce & 1) * sizeof(shared::QueueState) +
+                                           offsetof(shared::QueueState, groupsX));
   };
   const gpu::ComputePipeline& shade = shadeVariant(scene, guide.features());
   // Wavefront: begin, then per bounce trace (shadow + extension rays) and

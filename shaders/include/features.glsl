@@ -2,7 +2,9 @@
 // lavapipe both sides of every branch execute (masked SIMD), so code for a
 // feature the frame does not use must not be in the pipeline at all: a
 // specialization constant set to false removes it at pipeline creation.
-layout(constant_id = 3) const bool kUseTextures = true;
-layout(constant_id = 4) const bool kUseGuiding = true;
-layout(constant_id = 5) const bool kUseLightLearning = true;
-layout(constant_id = 6) const bool kUseNonTriangleLights = true;  // punctual, directional, sky
+#include "shared/specialization.h"
+layout(constant_id = QL_SPEC_USE_TEXTURES) const bool kUseTextures = true;
+layout(constant_id = QL_SPEC_USE_GUIDING) const bool kUseGuiding = true;
+layout(constant_id = QL_SPEC_USE_LIGHT_LEARNING) const bool kUseLightLearning = true;
+// Punctual, directional and sky lights (else triangles only).
+layout(constant_id = QL_SPEC_USE_NON_TRIANGLE_LIGHTS) const bool kUseNonTriangleLights = true;

@@ -14,7 +14,7 @@
 #include "include/lights.glsl"
 #include "include/guiding.glsl"
 
-layout(local_size_x = 64) in;
+layout(local_size_x = QL_PATH_GROUP_SIZE) in;
 layout(binding = QL_BIND_FRAME, scalar) readonly buffer Frame { FrameUniforms frame; };
 layout(push_constant, scalar) uniform Push { TracePush pc; };
 #include "include/path_state.glsl"

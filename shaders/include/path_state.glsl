@@ -1,6 +1,7 @@
 // One path's state between the wavefront passes, kPathStateTexels RGBA32UI
 // texels per path in a storage texel buffer (integer texels keep every bit
-// pattern, including the NaN-shaped ones of packed indices, on any GPU).
+// pattern, including the NaN-shaped ones of packed indices, on any GPU). The
+// texel of each field: kPathTexel* in shared/scene_types.h.
 layout(binding = QL_BIND_PATH_STATE, rgba32ui) uniform uimageBuffer uPaths;
 
 const uint kPathAlive = 1u;          // has an extension ray to trace / a hit to shade
@@ -47,31 +48,37 @@ void setPathTexel(uint path, uint i, vec4 v) {
 PathState loadPath(uint path) {
   PathState s;
   vec4 t;
-  t = pathTexel(path, 0u); s.origin = t.xyz; s.pixel = floatBitsToUint(t.w);
-  t = pathTexel(path, 1u); s.dir = t.xyz; s.rng = floatBitsToUint(t.w);
-  t = pathTexel(path, 2u); s.throughput = t.xyz; s.prevScatterPdf = t.w;
-  t = pathTexel(path, 3u); s.radiance = t.xyz; s.flags = floatBitsToUint(t.w);
-  t = pathTexel(path, 4u); s.shadowOrigin = t.xyz; s.shadowTMax = t.w;
-  t = pathTexel(path, 5u); s.shadowDir = t.xyz; s.prevPoint = floatBitsToUint(t.w);
-  t = pathTexel(path, 6u); s.shadowContribution = t.xyz; s.prevEntry = floatBitsToUint(t.w);
-  t = pathTexel(path, 7u); s.hitT = t.x; s.hitU = t.y; s.hitV = t.z; s.hitInstance = floatBitsToUint(t.w);
-  t = pathTexel(path, 8u); s.hitPrimitive = floatBitsToUint(t.x); s.shadowTarget = t.y;
+  t = pathTexel(path, kPathTexelOrigin); s.origin = t.xyz; s.pixel = floatBitsToUint(t.w);
+  t = pathTexel(path, kPathTexelDir); s.dir = t.xyz; s.rng = floatBitsToUint(t.w);
+  t = pathTexel(path, kPathTexelThroughput); s.throughput = t.xyz; s.prevScatterPdf = t.w;
+  t = pathTexel(path, kPathTexelRadianceFlags); s.radiance = t.xyz; s.flags = floatBitsToUint(t.w);
+  t = pathTexel(path, kPathTexelShadowOrigin); s.shadowOrigin = t.xyz; s.shadowTMax = t.w;
+  t = pathTexel(path, kPathTexelShadowDir); s.shadowDir = t.xyz; s.prevPoint = floatBitsToUint(t.w);
+  t = pathTexel(path, kPathTexelShadowContribution);
+  s.shadowContribution = t.xyz; s.prevEntry = floatBitsToUint(t.w);
+  t = pathTexel(path, kPathTexelHit);
+  s.hitT = t.x; s.hitU = t.y; s.hitV = t.z; s.hitInstance = floatBitsToUint(t.w);
+  t = pathTexel(path, kPathTexelShadowLearning);
+  s.hitPrimitive = floatBitsToUint(t.x); s.shadowTarget = t.y;
   s.shadowPoint = floatBitsToUint(t.z); s.shadowLight = floatBitsToUint(t.w);
-  uvec4 c = floatBitsToUint(pathTexel(path, 9u));
+  uvec4 c = floatBitsToUint(pathTexel(path, kPathTexelCounters));
   s.vertices = c.x; s.covered = c.y; s.rays = c.z; s.shadowRays = c.w;
   return s;
 }
 
 void storePath(uint path, PathState s) {
-  setPathTexel(path, 0u, vec4(s.origin, uintBitsToFloat(s.pixel)));
-  setPathTexel(path, 1u, vec4(s.dir, uintBitsToFloat(s.rng)));
-  setPathTexel(path, 2u, vec4(s.throughput, s.prevScatterPdf));
-  setPathTexel(path, 3u, vec4(s.radiance, uintBitsToFloat(s.flags)));
-  setPathTexel(path, 4u, vec4(s.shadowOrigin, s.shadowTMax));
-  setPathTexel(path, 5u, vec4(s.shadowDir, uintBitsToFloat(s.prevPoint)));
-  setPathTexel(path, 6u, vec4(s.shadowContribution, uintBitsToFloat(s.prevEntry)));
-  setPathTexel(path, 7u, vec4(s.hitT, s.hitU, s.hitV, uintBitsToFloat(s.hitInstance)));
-  setPathTexel(path, 8u, vec4(uintBitsToFloat(s.hitPrimitive), s.shadowTarget,
-                              uintBitsToFloat(s.shadowPoint), uintBitsToFloat(s.shadowLight)));
-  setPathTexel(path, 9u, uintBitsToFloat(uvec4(s.vertices, s.covered, s.rays, s.shadowRays)));
+  setPathTexel(path, kPathTexelOrigin, vec4(s.origin, uintBitsToFloat(s.pixel)));
+  setPathTexel(path, kPathTexelDir, vec4(s.dir, uintBitsToFloat(s.rng)));
+  setPathTexel(path, kPathTexelThroughput, vec4(s.throughput, s.prevScatterPdf));
+  setPathTexel(path, kPathTexelRadianceFlags, vec4(s.radiance, uintBitsToFloat(s.flags)));
+  setPathTexel(path, kPathTexelShadowOrigin, vec4(s.shadowOrigin, s.shadowTMax));
+  setPathTexel(path, kPathTexelShadowDir, vec4(s.shadowDir, uintBitsToFloat(s.prevPoint)));
+  setPathTexel(path, kPathTexelShadowContribution,
+               vec4(s.shadowContribution, uintBitsToFloat(s.prevEntry)));
+  setPathTexel(path, kPathTexelHit, vec4(s.hitT, s.hitU, s.hitV, uintBitsToFloat(s.hitInstance)));
+  setPathTexel(path, kPathTexelShadowLearning,
+               vec4(uintBitsToFloat(s.hitPrimitive), s.shadowTarget, uintBitsToFloat(s.shadowPoint),
+                    uintBitsToFloat(s.shadowLight)));
+  setPathTexel(path, kPathTexelCounters,
+               uintBitsToFloat(uvec4(s.vertices, s.covered, s.rays, s.shadowRays)));
 }

@@ -1,18 +1,21 @@
 // Q-learned importance sampling (Dahm & Keller 2017; van Mastrigt 2018): GPU
-// structs, bindings, and the learning-rate arithmetic, shared by GLSL and C++.
+// structs, the update pass's bindings, and the learning-rate arithmetic, shared
+// by GLSL and C++. The guide's bindings in the path passes are in bindings.h.
 #ifndef QLIGHT_SHARED_GUIDING_TYPES_H
 #define QLIGHT_SHARED_GUIDING_TYPES_H
+#include "bindings.h"
 #include "common.h"
 
 QL_BEGIN
 
-// A cache point: a surface point with a hemisphere of strata. Its slot in the
-// Q tables is its index in the point array (the ECS storage order).
+// A cache point: a surface point with a hemisphere of strata. Its index in the
+// point array is its slot in the learned tables, kept for the point's lifetime
+// (engine/guiding/cache_point_set.h).
 struct GpuCachePoint {
   vec3 position;
   float radius;  // rejection distance it was accepted with
   vec3 normal;
-  uint pad;
+  uint pad;      // CachePoint keeps its slot here (unread by the shaders)
 };
 QL_CHECK_SIZE(GpuCachePoint, 32);
 
@@ -46,27 +49,22 @@ QL_CHECK_SIZE(GuidingUniforms, 64);
 
 QL_CONST uint kNoCachePoint = 0xffffffffu;
 
-// Bindings of the guiding buffers in the path tracing passes (after the scene's).
-#define QL_BIND_GUIDING 14
-#define QL_BIND_CACHE_POINTS 15
-#define QL_BIND_GRID_BUCKETS 16
-#define QL_BIND_GRID_POINTS 17
-#define QL_BIND_Q_CDF 18
-#define QL_BIND_Q_SUM 19
-#define QL_BIND_Q_COUNT 20
-#define QL_BIND_SPAWN 21
-#define QL_BIND_V_CDF 22
-#define QL_BIND_V_SUM 23
-#define QL_BIND_V_COUNT 24
-#define QL_BIND_POINT_UPDATES 30  // Q updates each point has received
-
 // Bucket of a grid cell in the hashed grid of cache points (CPU build and GPU
 // lookup must agree, so both use this).
 QL_FN uint gridCellHash(ivec3 c, uint hashSize) {
   return (uint(c.x) * 73856093u ^ uint(c.y) * 19349663u ^ uint(c.z) * 83492791u) & (hashSize - 1u);
 }
 
-// Push constants of q_update.comp (used for Q and for the light values V).
+// Bindings and push constants of q_update.comp (used for Q and for the light
+// values V): one table's values, visit counts, CDF weights (the output) and
+// fixed-point target sums and counts, and the per-point update counts.
+#define QL_Q_UPDATE_BIND_VALUES 0
+#define QL_Q_UPDATE_BIND_VISITS 1
+#define QL_Q_UPDATE_BIND_WEIGHTS 2
+#define QL_Q_UPDATE_BIND_SUMS 3
+#define QL_Q_UPDATE_BIND_COUNTS 4
+#define QL_Q_UPDATE_BIND_POINT_UPDATES 5
+
 struct TableUpdatePush {
   uint entries;
   uint segmentLength;  // entries per cache point
@@ -79,7 +77,8 @@ struct TableUpdatePush {
 };
 QL_CHECK_SIZE(TableUpdatePush, 32);
 
-// Push constants of guiding_darts.comp: light paths whose hits are candidate points.
+// Push constants of guiding_darts.comp: light paths whose hits are candidate
+// points (written to QL_BIND_DART_CANDIDATES).
 struct DartsPush {
   uint pathCount;
   uint maxBounces;
@@ -93,7 +92,6 @@ struct DartsPush {
   uint pad;
 };
 QL_CHECK_SIZE(DartsPush, 48);
-#define QL_BIND_DART_CANDIDATES 25
 
 // Targets are summed as 64-bit fixed point (two uint words, 20 fraction bits):
 // integer addition does not depend on the order the GPU's atomics run in, so

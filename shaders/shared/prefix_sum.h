@@ -7,6 +7,11 @@
 #define QL_SCAN_GROUP_SIZE 256
 #define QL_SCAN_ITEMS_PER_THREAD 4
 
+// Both passes (prefix_sum_tiles, prefix_sum_add): the scanned values, in
+// place, and the tile totals (tiles writes them, add reads them back scanned).
+#define QL_SCAN_BIND_VALUES 0
+#define QL_SCAN_BIND_TILE_SUMS 1
+
 QL_BEGIN
 QL_CONST uint kScanTileElements = QL_SCAN_GROUP_SIZE * QL_SCAN_ITEMS_PER_THREAD;
 

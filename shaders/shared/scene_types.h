@@ -1,7 +1,8 @@
-// The scene and frame as the path tracer sees them: GPU structs shared by GLSL
-// (scalar block layout) and C++, and the binding numbers of the path tracing passes.
+// The scene and frame as the path tracer sees them, and the wavefront's path
+// state and queues: GPU structs shared by GLSL (scalar block layout) and C++.
 #ifndef QLIGHT_SHARED_SCENE_TYPES_H
 #define QLIGHT_SHARED_SCENE_TYPES_H
+#include "bindings.h"
 #include "common.h"
 
 QL_BEGIN
@@ -139,50 +140,46 @@ QL_CONST uint kStatInvalidSamples = 5u; // NaN/Inf samples dropped (should stay 
 QL_CONST uint kStatCoveredVertices = 6u; // scattering vertices that found a cache point
 QL_CONST uint kStatCount = 8u;
 
-// Bindings of the path tracing passes (shaders/pt_*.comp).
-#define QL_BIND_BVH_NODES 0
-#define QL_BIND_BVH_TRIS 1
-#define QL_BIND_BVH_INSTANCES 2
-#define QL_BIND_TRIANGLES 3
-#define QL_BIND_VERTICES 4
-#define QL_BIND_INSTANCES 5
-#define QL_BIND_MATERIALS 6
-#define QL_BIND_TEXTURES 7
-#define QL_BIND_TEXELS 8
-#define QL_BIND_LIGHTS 9
-#define QL_BIND_LIGHT_CDF 10
-#define QL_BIND_FRAME 11
-#define QL_BIND_ACCUM 12
-#define QL_BIND_STATS 13
-
 // The path tracer runs as a wavefront: begin (camera rays), then per bounce
 // trace (pending shadow ray + extension ray) and shade, a last trace for the
-// final shadow rays, and end (accumulate). Path state lives between passes in
-// a storage texel buffer (whole-texel loads and stores vectorize on lavapipe).
+// final shadow rays, and end (accumulate); pt_queue sizes the dispatch of each
+// trace and shade. Path state lives between passes in a storage texel buffer
+// (whole-texel loads and stores vectorize on lavapipe).
 struct TracePush {
   uint sampleIndex;  // which of the frame's samples this dispatch takes
   uint bounce;       // path depth of the pass (every live path is at the same depth)
-  uint extend;       // trace: 1 = also trace the extension ray
+  uint extend;       // trace: 1 = also trace the extension ray; pt_queue: 1 = a sample starts
   uint pathCount;
 };
 QL_CHECK_SIZE(TracePush, 16);
 
-QL_CONST uint kPathStateTexels = 10u;
-#define QL_BIND_PATH_STATE 26
-// Work queues: trace and shade visit only the paths in the current queue (ids
-// of live paths, or of dead ones with a shadow ray left); shade appends the
-// survivors to the next queue; pt_queue turns its count into dispatch sizes.
-#define QL_BIND_QUEUE_IN 27
-#define QL_BIND_QUEUE_OUT 28
-#define QL_BIND_QUEUE_STATE 29
+// Workgroup size of every path pass (and of pt_queue's dispatch sizes).
+#define QL_PATH_GROUP_SIZE 64
+QL_CONST uint kPathGroupSize = QL_PATH_GROUP_SIZE;
 
-// Per queue: its count and the indirect dispatch that covers it.
+// One path's state: kPathStateTexels RGBA32UI texels, packed and unpacked by
+// shaders/include/path_state.glsl. Passes that need only a few fields read
+// and write their texels directly.
+QL_CONST uint kPathTexelOrigin = 0u;              // origin, pixel
+QL_CONST uint kPathTexelDir = 1u;                 // dir, rng
+QL_CONST uint kPathTexelThroughput = 2u;          // throughput, prevScatterPdf
+QL_CONST uint kPathTexelRadianceFlags = 3u;       // radiance, flags
+QL_CONST uint kPathTexelShadowOrigin = 4u;        // shadowOrigin, shadowTMax
+QL_CONST uint kPathTexelShadowDir = 5u;           // shadowDir, prevPoint
+QL_CONST uint kPathTexelShadowContribution = 6u;  // shadowContribution, prevEntry
+QL_CONST uint kPathTexelHit = 7u;                 // hitT, hitU, hitV, hitInstance
+QL_CONST uint kPathTexelShadowLearning = 8u;      // hitPrimitive, shadowTarget, -Point, -Light
+QL_CONST uint kPathTexelCounters = 9u;            // vertices, covered, rays, shadowRays
+QL_CONST uint kPathStateTexels = kPathTexelCounters + 1u;
+
+// Per queue (two: the current and the next): its count and the indirect
+// dispatch that covers it. groupsX..Z are a VkDispatchIndirectCommand, at
+// offsetof(QueueState, groupsX) in each.
 struct QueueState {
   uint count;
   uint groupsX, groupsY, groupsZ;
 };
 QL_CHECK_SIZE(QueueState, 16);
-QL_CONST uint kPathGroupSize = 64u;
 
 QL_END
 

@@ -23,6 +23,10 @@
 
 QL_BEGIN
 
+// Most strata (rows x cols) a point may have: its CDF is one segment of the
+// segmented prefix scan (gpu::PrefixSum::kMaxSegmentLength).
+QL_CONST uint kMaxStrata = 1024u;
+
 QL_FN uint stratumCount(uint rows, uint cols) { return rows * cols; }
 
 // cos(theta) at the pole-side edge of a row; rowUpperCos(rows) == 0. Both the

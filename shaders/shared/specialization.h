@@ -1,0 +1,24 @@
+// Specialization constant ids, shared by the GLSL layout(constant_id = ...)
+// qualifiers and the C++ that fills the values (gpu::ComputePipeline takes
+// value i for constant_id i). Ids 0..2 are reserved: by gpu::ComputePipeline's
+// convention they are the workgroup size (local_size_x_id = 0..2).
+#ifndef QLIGHT_SHARED_SPECIALIZATION_H
+#define QLIGHT_SHARED_SPECIALIZATION_H
+#include "common.h"
+
+// Features of the path tracing passes (shaders/include/features.glsl). GLSL
+// layout qualifiers need literals, hence macros.
+#define QL_SPEC_USE_TEXTURES 3
+#define QL_SPEC_USE_GUIDING 4
+#define QL_SPEC_USE_LIGHT_LEARNING 5
+#define QL_SPEC_USE_NON_TRIANGLE_LIGHTS 6
+
+QL_BEGIN
+QL_CONST uint kSpecUseTextures = QL_SPEC_USE_TEXTURES;
+QL_CONST uint kSpecUseGuiding = QL_SPEC_USE_GUIDING;
+QL_CONST uint kSpecUseLightLearning = QL_SPEC_USE_LIGHT_LEARNING;
+QL_CONST uint kSpecUseNonTriangleLights = QL_SPEC_USE_NON_TRIANGLE_LIGHTS;
+QL_CONST uint kSpecPathFeatureCount = QL_SPEC_USE_NON_TRIANGLE_LIGHTS + 1u;  // values to pass
+QL_END
+
+#endif
