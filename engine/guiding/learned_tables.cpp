@@ -41,6 +41,7 @@ void LearnedTable::allocate(const gpu::Context& ctx, uint64_t slots, uint32_t le
 
 void LearnedTable::recordReset(gpu::PassRecorder& rec, float initial, uint64_t first, uint64_t count) const {
   const uint64_t firstEntry = first * rowLength, entries = count * rowLength;
+  if (entries == 0) return;  // an empty table (V without learned lights)
   const bool whole = first == 0 && entries * 4 >= values->size();
   auto fill = [&](const gpu::Buffer& b, uint32_t value, uint64_t entryBytes) {
     if (whole) rec.fill("guiding.reset", b, value);

@@ -2,7 +2,9 @@
 
 #include <chrono>
 #include <cstdio>
+#include <cmath>
 #include <ctime>
+#include <optional>
 #include <filesystem>
 #include <fstream>
 
@@ -23,7 +25,7 @@ struct BenchArgs {
   std::vector<std::string> scenes;  // empty: every shipped scene
   std::string out = "out/bench";
   std::string cache;  // empty: $XDG_CACHE_HOME/qlight or ~/.cache/qlight
-  double budgetSeconds = 0;  // per method and scene; 0: the mode's
+  std::optional<double> budgetSeconds;  // per method and scene; default: the mode's
   uint32_t referenceSpp = 0;
   uint32_t width = 0, height = 0;
   uint32_t sppPerFrame = 2;
@@ -33,7 +35,7 @@ struct BenchArgs {
 // The quick mode finishes in about a minute on lavapipe (2 cores), the full one in well
 // under an hour for the shipped scenes.
 void applyModeDefaults(BenchArgs& a) {
-  if (a.budgetSeconds == 0) a.budgetSeconds = a.quick ? 2.5 : 40.0;
+  if (!a.budgetSeconds) a.budgetSeconds = a.quick ? 2.5 : 40.0;
   if (a.referenceSpp == 0) a.referenceSpp = a.quick ? 256 : 2048;
   if (a.width == 0) a.width = a.quick ? 96 : 256;
   if (a.height == 0) a.height = a.quick ? 54 : 144;
@@ -48,7 +50,7 @@ fs::path cacheDirectory(const BenchArgs& a) {
 
 // Bad input gets one line before any rendering.
 void validate(const BenchArgs& a, const std::vector<std::string>& scenes) {
-  if (!(a.budgetSeconds > 0) || !std::isfinite(a.budgetSeconds))
+  if (!(*a.budgetSeconds > 0) || !std::isfinite(*a.budgetSeconds))
     throw std::invalid_argument("bench: the time budget must be a positive number of seconds");
   if (a.referenceSpp < 2) throw std::invalid_argument("bench: the reference needs at least 2 spp");
   for (const std::string& s : scenes)
@@ -82,11 +84,11 @@ int runBench(BenchArgs a, const CommonOptions& common) {
   settings.samplesPerFrame = a.sppPerFrame;
   MethodRunSettings run;
   run.render = settings;
-  run.budgetSeconds = a.budgetSeconds;
+  run.budgetSeconds = *a.budgetSeconds;
   const std::vector<MethodSpec> methods = benchMethods(guiding::GuidingSettings{});
 
   // Progress in units of work: a reference counts 1 (0 when cached), methods their budget.
-  const double perScene = 1.0 + a.budgetSeconds * double(methods.size());
+  const double perScene = 1.0 + *a.budgetSeconds * double(methods.size());
   ProgressBar progress(perScene * double(scenes.size()));
   nlohmann::json sceneEntries = nlohmann::json::array();
   for (size_t i = 0; i < scenes.size(); ++i) {
@@ -110,7 +112,7 @@ int runBench(BenchArgs a, const CommonOptions& common) {
                       {"width", a.width},
                       {"height", a.height},
                       {"spp_per_frame", a.sppPerFrame},
-                      {"time_budget_seconds", a.budgetSeconds},
+                      {"time_budget_seconds", *a.budgetSeconds},
                       {"reference_spp", a.referenceSpp},
                       {"renderer_version", rendererVersion()},
                       {"date", isoDate()},
@@ -119,7 +121,7 @@ int runBench(BenchArgs a, const CommonOptions& common) {
   session::writeJson(fs::path(a.out) / "bench.json", j);
   if (a.report) writeReport(a.out);
   std::printf("qlight bench: %zu scenes, %zu methods, %.1f s each; %s/report.md\n", scenes.size(),
-              methods.size(), a.budgetSeconds, a.out.c_str());
+              methods.size(), *a.budgetSeconds, a.out.c_str());
   for (const auto& s : sceneEntries) {
     std::printf("  %-16s", s["name"].get<std::string>().c_str());
     for (const auto& [method, ratio] : s["headline"]["time_to_unguided_error"].items())
