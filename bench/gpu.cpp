@@ -34,8 +34,10 @@ void BM_PrefixSum(benchmark::State& state) {
     ctx.submitAndWait([&](VkCommandBuffer cmd) {
       timer.reset(cmd);
       gpu::PassRecorder rec(ctx, cmd, &timer);
-      if (segment) scan.scanSegments(rec, data, n / segment, segment);
-      else scan.scan(rec, data, n);
+      if (segment)
+        scan.scanSegments(rec, data, n / segment, segment);
+      else
+        scan.scan(rec, data, n);
       rec.finish();
     });
     double ms = 0;

@@ -5,9 +5,9 @@
 
 #include <memory>
 
+#include "engine/gltf/gltf_loader.h"
 #include "engine/gpu/gpu_timer.h"
 #include "engine/gpu/pass_recorder.h"
-#include "engine/gltf/gltf_loader.h"
 #include "engine/session/offline_render.h"
 #include "engine/session/scene_world.h"
 #include "shaders/shared/trace_bench.h"
@@ -27,7 +27,8 @@ struct Fixture {
   const scene::SceneAsset& scene(const std::string& name) {
     auto it = scenes.find(name);
     if (it == scenes.end())
-      it = scenes.emplace(name, gltf::loadGltf(std::string(QLIGHT_SOURCE_DIR) + "/assets/" + name)).first;
+      it = scenes.emplace(name, gltf::loadGltf(std::string(QLIGHT_SOURCE_DIR) + "/assets/" + name))
+               .first;
     return it->second;
   }
 };
@@ -72,15 +73,25 @@ void BM_Traversal(benchmark::State& state) {
       gpu::PassRecorder rec(*f.ctx, cmd, &timer);
       auto pass = rec.pass("trace", pipeline);
       scene.bind(pass);
-      pass.read(QL_BIND_FRAME, uniforms).write(QL_BIND_STATS, stats).push(push).dispatchThreads(rays);
+      pass.read(QL_BIND_FRAME, uniforms)
+          .write(QL_BIND_STATS, stats)
+          .push(push)
+          .dispatchThreads(rays);
       rec.finish();
     });
     state.SetIterationTime(timer.collect(*f.ctx)["trace"] * 1e-3);
   }
-  state.counters["Mrays/s"] = benchmark::Counter(double(rays) * 1e-6, benchmark::Counter::kIsIterationInvariantRate);
-  state.SetLabel(std::string(kScenes[state.range(0)]) + (mode == 0 ? " camera" : mode == 1 ? " incoherent" : " shadow"));
+  state.counters["Mrays/s"] =
+      benchmark::Counter(double(rays) * 1e-6, benchmark::Counter::kIsIterationInvariantRate);
+  state.SetLabel(std::string(kScenes[state.range(0)]) + (mode == 0   ? " camera"
+                                                         : mode == 1 ? " incoherent"
+                                                                     : " shadow"));
 }
-BENCHMARK(BM_Traversal)->ArgsProduct({{0, 1}, {0, 1, 2}})->UseManualTime()->Unit(benchmark::kMillisecond)->MinTime(1.0);
+BENCHMARK(BM_Traversal)
+    ->ArgsProduct({{0, 1}, {0, 1, 2}})
+    ->UseManualTime()
+    ->Unit(benchmark::kMillisecond)
+    ->MinTime(1.0);
 
 // Whole frames at 320x180, 4 spp each: rays/s and the learning passes' share.
 void BM_PathTrace(benchmark::State& state) {
@@ -108,6 +119,10 @@ void BM_PathTrace(benchmark::State& state) {
   state.counters["learning share"] = learnMs / gpuMs;
   state.SetLabel(std::string(kScenes[state.range(0)]) + (guided ? " guided" : " unguided"));
 }
-BENCHMARK(BM_PathTrace)->ArgsProduct({{0, 1}, {0, 1}})->UseManualTime()->Unit(benchmark::kMillisecond)->Iterations(2);
+BENCHMARK(BM_PathTrace)
+    ->ArgsProduct({{0, 1}, {0, 1}})
+    ->UseManualTime()
+    ->Unit(benchmark::kMillisecond)
+    ->Iterations(2);
 
 }  // namespace

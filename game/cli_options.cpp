@@ -20,11 +20,12 @@ void addRenderOptions(CLI::App& app, render::RenderSettings& s) {
       ->transform(CLI::CheckedTransformer(onOff, CLI::ignore_case));
   app.add_option("--exposure", s.exposure, "exposure multiplier for PNG and display")
       ->check(CLI::PositiveNumber);
-  app.add_option("--temporal-blend", s.temporalBlend,
-                 "animated scenes: weight kept of the accumulated image when things move (0: restart)")
+  app.add_option(
+         "--temporal-blend", s.temporalBlend,
+         "animated scenes: weight kept of the accumulated image when things move (0: restart)")
       ->check(CLI::Range(0.0, 0.99));
   std::map<std::string, image::Tonemap> tonemaps{{"aces", image::Tonemap::Aces},
-                                                  {"clamp", image::Tonemap::Clamp}};
+                                                 {"clamp", image::Tonemap::Clamp}};
   app.add_option("--tonemap", s.tonemap, "aces or clamp (PNG and display only)")
       ->transform(CLI::CheckedTransformer(tonemaps, CLI::ignore_case));
 }
@@ -55,7 +56,8 @@ void finishGuidingOptions(const GuidingCli& cli, guiding::GuidingSettings& g,
                           render::RenderSettings& r) {
   if (!cli.strata.empty()) guiding::parseStrata(cli.strata, g);
   if (cli.nee == "off") r.estimator = render::Estimator::BsdfOnly;
-  if (cli.nee == "on" && r.estimator == render::Estimator::BsdfOnly) r.estimator = render::Estimator::Mis;
+  if (cli.nee == "on" && r.estimator == render::Estimator::BsdfOnly)
+    r.estimator = render::Estimator::Mis;
   g.seed = r.seed;
   guiding::validate(g);
 }

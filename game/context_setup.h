@@ -10,8 +10,7 @@
 namespace qlight::game {
 
 std::unique_ptr<gpu::Context> createContext(
-    const CommonOptions& common, bool windowed,
-    std::vector<std::string> instanceExtensions = {},
+    const CommonOptions& common, bool windowed, std::vector<std::string> instanceExtensions = {},
     std::function<VkSurfaceKHR(VkInstance)> createSurface = {});
 
 // 0, or kExitValidation after printing how many validation messages there were.

@@ -57,7 +57,8 @@ int runHeadless(const DemoArgs& a, const CommonOptions& common) {
     if (last || (a.saveEvery > 0 && f % a.saveEvery == 0)) {
       char name[64];
       std::snprintf(name, sizeof(name), "frame_%04u.png", f);
-      image::writeImage(fs::path(a.outDir) / name, renderer.tracer().readImage(), s.exposure, s.tonemap);
+      image::writeImage(fs::path(a.outDir) / name, renderer.tracer().readImage(), s.exposure,
+                        s.tonemap);
     }
   }
   total.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
@@ -67,12 +68,14 @@ int runHeadless(const DemoArgs& a, const CommonOptions& common) {
   stats["mode"] = "headless";
   stats["frames_detail"] = frames;
   session::writeJson(fs::path(a.outDir) / "stats.json", stats);
-  image::writeImage(fs::path(a.outDir) / "final.png", renderer.tracer().readImage(), s.exposure, s.tonemap);
-  std::printf("qlight demo: %u frames of %s at %ux%u in %.2f s (%.1f ms/frame, %.2f Mrays/s); "
-              "images and stats.json in %s\n",
-              a.frames, a.scene.c_str(), s.width, s.height, total.seconds,
-              1e3 * total.seconds / std::max(1u, a.frames),
-              stats["rays_per_second"].get<double>() * 1e-6, a.outDir.c_str());
+  image::writeImage(fs::path(a.outDir) / "final.png", renderer.tracer().readImage(), s.exposure,
+                    s.tonemap);
+  std::printf(
+      "qlight demo: %u frames of %s at %ux%u in %.2f s (%.1f ms/frame, %.2f Mrays/s); "
+      "images and stats.json in %s\n",
+      a.frames, a.scene.c_str(), s.width, s.height, total.seconds,
+      1e3 * total.seconds / std::max(1u, a.frames), stats["rays_per_second"].get<double>() * 1e-6,
+      a.outDir.c_str());
   return finishContext(*ctx);
 }
 
@@ -82,17 +85,24 @@ std::function<int()> addDemoCommand(CLI::App& app, const CommonOptions& common) 
   auto args = std::make_shared<DemoArgs>();
   CLI::App* cmd = app.add_subcommand("demo", "the flythrough (window, or headless frames)");
   cmd->add_option("--scene", args->scene, "glTF file or shipped scene name")->capture_default_str();
-  cmd->add_option("--frames", args->frames, "headless: frames to render")->check(CLI::Range(1, 100000))->capture_default_str();
-  cmd->add_option("--fps", args->fps, "headless: frames per second of scene time")->check(CLI::Range(1.0, 1000.0));
-  cmd->add_option("--move-seconds", args->moveSeconds, "headless: seconds the camera moves before it stops")
+  cmd->add_option("--frames", args->frames, "headless: frames to render")
+      ->check(CLI::Range(1, 100000))
+      ->capture_default_str();
+  cmd->add_option("--fps", args->fps, "headless: frames per second of scene time")
+      ->check(CLI::Range(1.0, 1000.0));
+  cmd->add_option("--move-seconds", args->moveSeconds,
+                  "headless: seconds the camera moves before it stops")
       ->check(CLI::Range(0.0, 1e6));
-  cmd->add_option("--save-every", args->saveEvery, "headless: write every Nth frame (0: last only)");
+  cmd->add_option("--save-every", args->saveEvery,
+                  "headless: write every Nth frame (0: last only)");
   cmd->add_option("--out", args->outDir, "headless: output folder")->capture_default_str();
   cmd->add_option("--spp-per-frame", args->settings.samplesPerFrame, "samples per pixel per frame")
       ->check(CLI::Range(1, 4096));
   cmd->add_flag("--headless", args->headless, "render frames to files even with a display");
-  cmd->add_option("--exit-after-frames", args->exitAfterFrames, "window: close after this many frames (0: never)");
-  cmd->add_option("--screenshot-at-exit", args->screenshotAtExit, "window: write the render as PNG on closing");
+  cmd->add_option("--exit-after-frames", args->exitAfterFrames,
+                  "window: close after this many frames (0: never)");
+  cmd->add_option("--screenshot-at-exit", args->screenshotAtExit,
+                  "window: write the render as PNG on closing");
   args->settings.temporalBlend = 0.7f;  // the demo keeps a fading history of animated frames
   addRenderOptions(*cmd, args->settings);
   addGuidingOptions(*cmd, args->guiding, args->guidingCli);
@@ -104,7 +114,8 @@ std::function<int()> addDemoCommand(CLI::App& app, const CommonOptions& common) 
       return runWindowed(*args, common);
     }
     if (!args->headless)
-      std::fprintf(stderr, "qlight demo: no display, rendering headless to %s\n", args->outDir.c_str());
+      std::fprintf(stderr, "qlight demo: no display, rendering headless to %s\n",
+                   args->outDir.c_str());
     return runHeadless(*args, common);
   };
 }

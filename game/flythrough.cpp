@@ -14,7 +14,8 @@ render::CameraView Flythrough::at(float seconds) const {
   float reach = 0.08f * sceneRadius;
   render::CameraView v = base;
   v.position = base.position + right * (reach * std::sin(phase)) +
-               up * (0.5f * reach * std::sin(2.0f * phase)) + forward * (reach * 0.5f * (1.0f - std::cos(phase)));
+               up * (0.5f * reach * std::sin(2.0f * phase)) +
+               forward * (reach * 0.5f * (1.0f - std::cos(phase)));
   float yaw = 0.12f * std::sin(phase);
   v.forward = glm::vec3(glm::rotate(glm::mat4(1.0f), yaw, up) * glm::vec4(forward, 0.0f));
   v.up = up;

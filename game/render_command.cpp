@@ -3,10 +3,10 @@
 #include <cstdio>
 #include <memory>
 
+#include "engine/gltf/gltf_loader.h"
 #include "engine/gpu/context.h"
 #include "engine/session/offline_render.h"
 #include "engine/session/stats_json.h"
-#include "engine/gltf/gltf_loader.h"
 #include "game/context_setup.h"
 
 namespace qlight::game {
@@ -38,8 +38,9 @@ int runRender(RenderArgs a, const CommonOptions& common) {
   stats["time"] = a.time;
   stats["max_depth"] = s.maxDepth;
   stats["seed"] = s.seed;
-  stats["estimator"] = s.estimator == render::Estimator::Mis ? "mis"
-                       : s.estimator == render::Estimator::BsdfOnly ? "bsdf" : "nee";
+  stats["estimator"] = s.estimator == render::Estimator::Mis        ? "mis"
+                       : s.estimator == render::Estimator::BsdfOnly ? "bsdf"
+                                                                    : "nee";
   stats["russian_roulette"] = s.russianRoulette;
   if (a.guiding.enabled) {
     stats["strata"] = std::to_string(a.guiding.rows) + "x" + std::to_string(a.guiding.cols);

@@ -8,7 +8,8 @@
 
 namespace qlight::game {
 
-GuidingPanelResult drawGuidingSection(guiding::GuidingSettings& s, const guiding::GuidingStats& st) {
+GuidingPanelResult drawGuidingSection(guiding::GuidingSettings& s,
+                                      const guiding::GuidingStats& st) {
   GuidingPanelResult r;
   guiding::GuidingSettings before = s;
   ImGui::Checkbox("guided sampling", &s.enabled);

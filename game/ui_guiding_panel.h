@@ -8,8 +8,8 @@
 namespace qlight::game {
 
 struct GuidingPanelResult {
-  bool changed = false;       // settings edited
-  bool regenerate = false;    // "regenerate points" pressed
+  bool changed = false;     // settings edited
+  bool regenerate = false;  // "regenerate points" pressed
 };
 
 GuidingPanelResult drawGuidingSection(guiding::GuidingSettings& settings,

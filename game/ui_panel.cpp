@@ -79,8 +79,10 @@ bool drawRenderSection(render::RenderSettings& s, float& renderScale) {
                                 ImGuiSliderFlags_AlwaysClamp);
   int seed = int(s.seed);
   if (ImGui::InputInt("seed", &seed)) s.seed = uint32_t(std::max(seed, 0)), changed = true;
-  ImGui::SliderFloat("temporal blend", &s.temporalBlend, 0.0f, 0.95f, "%.2f", ImGuiSliderFlags_AlwaysClamp);
-  if (ImGui::IsItemHovered()) ImGui::SetTooltip("animated scenes: history kept when lights move (0: restart)");
+  ImGui::SliderFloat("temporal blend", &s.temporalBlend, 0.0f, 0.95f, "%.2f",
+                     ImGuiSliderFlags_AlwaysClamp);
+  if (ImGui::IsItemHovered())
+    ImGui::SetTooltip("animated scenes: history kept when lights move (0: restart)");
   return changed;
 }
 

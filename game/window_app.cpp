@@ -8,8 +8,8 @@
 #include <cstdio>
 #include <filesystem>
 
-#include "engine/gpu/pass_recorder.h"
 #include "engine/gltf/gltf_loader.h"
+#include "engine/gpu/pass_recorder.h"
 #include "engine/ui/swapchain_blit.h"
 #include "game/context_setup.h"
 #include "game/ui_guiding_panel.h"
@@ -69,8 +69,8 @@ void WindowApp::registerDisplay() {
       .run([this](ecs::Registry& r) {
         ui::DisplaySettings display;
         display.exposure = wanted_.exposure;
-        display.tonemap = wanted_.tonemap == image::Tonemap::Aces ? shared::kTonemapAces
-                                                                   : shared::kTonemapClamp;
+        display.tonemap =
+            wanted_.tonemap == image::Tonemap::Aces ? shared::kTonemapAces : shared::kTonemapClamp;
         display.encodeSrgb = !presenter_.swapchain().encodesSrgb();
         display_.record(*r.resource<session::FrameRecording>().recorder,
                         renderer_.tracer().accumulation(), display);
@@ -160,7 +160,8 @@ int WindowApp::run() {
                      ctx_->deviceName(),
                      ctx_->deviceName().find("llvmpipe") == std::string::npos};
       PanelChanges changes = drawQlightPanel(view, wanted_, renderScale_, clock_, camera_, [&] {
-        guiding::GuidingStats learned = renderer_.guide() ? renderer_.guide()->stats() : guiding::GuidingStats{};
+        guiding::GuidingStats learned =
+            renderer_.guide() ? renderer_.guide()->stats() : guiding::GuidingStats{};
         GuidingPanelResult g = drawGuidingSection(guidingWanted_, learned);
         // Strata changes reset the tables, the rest applies from the next frame; guiding
         // never biases the image, so accumulation goes on.
@@ -177,7 +178,8 @@ int WindowApp::run() {
     ++frames;
 
     if (screenshotPending_) {
-      writeScreenshot(renderer_.tracer(), nextScreenshotPath(args_.outDir), wanted_.exposure, wanted_.tonemap);
+      writeScreenshot(renderer_.tracer(), nextScreenshotPath(args_.outDir), wanted_.exposure,
+                      wanted_.tonemap);
       screenshotPending_ = false;
     }
     if (args_.exitAfterFrames && frames >= args_.exitAfterFrames) break;

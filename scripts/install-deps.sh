@@ -9,7 +9,7 @@ packages=(
   libstb-dev libtinyexr-dev libcli11-dev nlohmann-json3-dev
   libgtest-dev libgmock-dev libbenchmark-dev
   xvfb x11-utils
-  python3-matplotlib python3-numpy
+  python3-matplotlib python3-numpy clang-format
 )
 missing=()
 for p in "${packages[@]}"; do

@@ -20,9 +20,9 @@
 namespace {
 
 using namespace qlight::scene;
+using glm::vec3;
 using qlight::gltf::loadGltf;
 using qlight::gltf::saveGltf;
-using glm::vec3;
 
 constexpr float kPi = 3.14159265358979f;
 

@@ -10,7 +10,6 @@
 #include <vector>
 
 #include "engine/gltf/gltf_context.h"
-
 #include "engine/scene/scene_asset.h"
 
 namespace qlight::gltf::detail {

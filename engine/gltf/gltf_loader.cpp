@@ -2,11 +2,11 @@
 
 #include <tiny_gltf.h>
 
-#include "engine/scene/animation.h"
 #include "engine/gltf/gltf_accessor.h"
 #include "engine/gltf/gltf_context.h"
 #include "engine/gltf/gltf_convert.h"
 #include "engine/gltf/gltf_file_check.h"
+#include "engine/scene/animation.h"
 #include "engine/scene/transforms.h"
 
 namespace qlight::gltf {

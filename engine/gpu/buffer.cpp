@@ -14,8 +14,8 @@ Buffer::Buffer(const Context& ctx, VkDeviceSize bytes, const std::string& name,
   VkDevice device = ctx.device();
   VkBufferCreateInfo info{VK_STRUCTURE_TYPE_BUFFER_CREATE_INFO};
   info.size = bytes;
-  info.usage = VK_BUFFER_USAGE_STORAGE_BUFFER_BIT | VK_BUFFER_USAGE_UNIFORM_BUFFER_BIT | VK_BUFFER_USAGE_TRANSFER_SRC_BIT |
-               VK_BUFFER_USAGE_TRANSFER_DST_BIT | extraUsage;
+  info.usage = VK_BUFFER_USAGE_STORAGE_BUFFER_BIT | VK_BUFFER_USAGE_UNIFORM_BUFFER_BIT |
+               VK_BUFFER_USAGE_TRANSFER_SRC_BIT | VK_BUFFER_USAGE_TRANSFER_DST_BIT | extraUsage;
   info.sharingMode = VK_SHARING_MODE_EXCLUSIVE;
   VkBuffer buffer = VK_NULL_HANDLE;
   QL_VK(vkCreateBuffer(device, &info, nullptr, &buffer));
@@ -38,13 +38,14 @@ Buffer::Buffer(const Context& ctx, VkDeviceSize bytes, const std::string& name,
   VkMemoryPropertyFlags flags = props.memoryTypes[type].propertyFlags;
   const VkMemoryPropertyFlags mappable =
       VK_MEMORY_PROPERTY_HOST_VISIBLE_BIT | VK_MEMORY_PROPERTY_HOST_COHERENT_BIT;
-  if ((flags & mappable) == mappable) QL_VK(vkMapMemory(device, memory, 0, VK_WHOLE_SIZE, 0, &mapped_));
+  if ((flags & mappable) == mappable)
+    QL_VK(vkMapMemory(device, memory, 0, VK_WHOLE_SIZE, 0, &mapped_));
 }
 
 void Buffer::upload(const Context& ctx, const void* data, VkDeviceSize bytes, VkDeviceSize offset) {
   if (offset + bytes > size_)
-    throw std::out_of_range("upload of " + std::to_string(bytes) + " bytes past the end of buffer " +
-                            name_);
+    throw std::out_of_range("upload of " + std::to_string(bytes) +
+                            " bytes past the end of buffer " + name_);
   if (bytes == 0) return;
   if (mapped_) {
     std::memcpy(static_cast<char*>(mapped_) + offset, data, bytes);
@@ -60,8 +61,7 @@ void Buffer::upload(const Context& ctx, const void* data, VkDeviceSize bytes, Vk
 
 void Buffer::download(const Context& ctx, void* data, VkDeviceSize bytes,
                       VkDeviceSize offset) const {
-  if (offset + bytes > size_)
-    throw std::out_of_range("readback past the end of buffer " + name_);
+  if (offset + bytes > size_) throw std::out_of_range("readback past the end of buffer " + name_);
   if (bytes == 0) return;
   if (mapped_) {
     std::memcpy(data, static_cast<const char*>(mapped_) + offset, bytes);
@@ -85,7 +85,8 @@ BufferView::BufferView(const Context& ctx, const Buffer& buffer, VkFormat format
   info.range = VK_WHOLE_SIZE;
   VkBufferView view = VK_NULL_HANDLE;
   QL_VK(vkCreateBufferView(device, &info, nullptr, &view));
-  view_ = Unique<VkBufferView>(view, [device](VkBufferView v) { vkDestroyBufferView(device, v, nullptr); });
+  view_ = Unique<VkBufferView>(
+      view, [device](VkBufferView v) { vkDestroyBufferView(device, v, nullptr); });
   ctx.setName(uint64_t(view), VK_OBJECT_TYPE_BUFFER_VIEW, buffer.name() + ".view");
 }
 

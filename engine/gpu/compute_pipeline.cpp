@@ -28,14 +28,14 @@ ComputePipeline::ComputePipeline(const Context& ctx, const std::string& shaderNa
   moduleInfo.pCode = spirv.data();
   VkShaderModule module = VK_NULL_HANDLE;
   QL_VK(vkCreateShaderModule(device, &moduleInfo, nullptr, &module));
-  module_ = Unique<VkShaderModule>(module,
-                                   [device](VkShaderModule m) { vkDestroyShaderModule(device, m, nullptr); });
+  module_ = Unique<VkShaderModule>(
+      module, [device](VkShaderModule m) { vkDestroyShaderModule(device, m, nullptr); });
 
   std::vector<VkDescriptorSetLayoutBinding> bindings;
   for (const ReflectedBinding& b : reflection_.bindings) {
     if (b.set != 0)
-      throw std::runtime_error("shader " + shaderName + ": binding " + b.name +
-                               " uses set " + std::to_string(b.set) + "; qlight uses set 0 only");
+      throw std::runtime_error("shader " + shaderName + ": binding " + b.name + " uses set " +
+                               std::to_string(b.set) + "; qlight uses set 0 only");
     bindings.push_back({b.binding, b.type, b.count, VK_SHADER_STAGE_COMPUTE_BIT, nullptr});
   }
   VkDescriptorSetLayoutCreateInfo setInfo{VK_STRUCTURE_TYPE_DESCRIPTOR_SET_LAYOUT_CREATE_INFO};
@@ -44,8 +44,9 @@ ComputePipeline::ComputePipeline(const Context& ctx, const std::string& shaderNa
   setInfo.pBindings = bindings.data();
   VkDescriptorSetLayout setLayout = VK_NULL_HANDLE;
   QL_VK(vkCreateDescriptorSetLayout(device, &setInfo, nullptr, &setLayout));
-  setLayout_ = Unique<VkDescriptorSetLayout>(
-      setLayout, [device](VkDescriptorSetLayout l) { vkDestroyDescriptorSetLayout(device, l, nullptr); });
+  setLayout_ = Unique<VkDescriptorSetLayout>(setLayout, [device](VkDescriptorSetLayout l) {
+    vkDestroyDescriptorSetLayout(device, l, nullptr);
+  });
 
   VkPushConstantRange range{VK_SHADER_STAGE_COMPUTE_BIT, 0, kMaxPushConstantBytes};
   VkPipelineLayoutCreateInfo layoutInfo{VK_STRUCTURE_TYPE_PIPELINE_LAYOUT_CREATE_INFO};

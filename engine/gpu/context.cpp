@@ -1,12 +1,13 @@
 #include "engine/gpu/context.h"
 
+#include <unistd.h>
+
 #include <algorithm>
 #include <cstdio>
 #include <cstdlib>
 #include <cstring>
 #include <filesystem>
 #include <stdexcept>
-#include <unistd.h>
 
 #include "engine/gpu/vk_check.h"
 
@@ -55,11 +56,16 @@ bool hasDeviceExtension(VkPhysicalDevice device, const char* name) {
 
 int deviceTypeRank(VkPhysicalDeviceType type) {
   switch (type) {
-    case VK_PHYSICAL_DEVICE_TYPE_DISCRETE_GPU: return 4;
-    case VK_PHYSICAL_DEVICE_TYPE_INTEGRATED_GPU: return 3;
-    case VK_PHYSICAL_DEVICE_TYPE_VIRTUAL_GPU: return 2;
-    case VK_PHYSICAL_DEVICE_TYPE_CPU: return 1;
-    default: return 0;
+    case VK_PHYSICAL_DEVICE_TYPE_DISCRETE_GPU:
+      return 4;
+    case VK_PHYSICAL_DEVICE_TYPE_INTEGRATED_GPU:
+      return 3;
+    case VK_PHYSICAL_DEVICE_TYPE_VIRTUAL_GPU:
+      return 2;
+    case VK_PHYSICAL_DEVICE_TYPE_CPU:
+      return 1;
+    default:
+      return 0;
   }
 }
 
@@ -153,8 +159,7 @@ void Context::createInstance(const ContextOptions& options) {
     VkDebugUtilsMessengerEXT messenger = VK_NULL_HANDLE;
     QL_VK(createMessenger(instance, &messengerInfo, nullptr, &messenger));
     messenger_ = Unique<VkDebugUtilsMessengerEXT>(
-        messenger,
-        [instance, destroyMessenger](VkDebugUtilsMessengerEXT m) {
+        messenger, [instance, destroyMessenger](VkDebugUtilsMessengerEXT m) {
           destroyMessenger(instance, m, nullptr);
         });
   }
@@ -191,7 +196,8 @@ void Context::pickPhysicalDevice(const ContextOptions& options) {
   }
   if (!best) {
     if (!wanted.empty())
-      throw std::runtime_error("no Vulkan 1.3 device matches \"" + wanted + "\"; devices: " + names);
+      throw std::runtime_error("no Vulkan 1.3 device matches \"" + wanted +
+                               "\"; devices: " + names);
     throw std::runtime_error("no Vulkan 1.3 device with VK_KHR_push_descriptor; devices: " + names);
   }
   physical_ = best;
@@ -295,14 +301,14 @@ uint32_t Context::findMemoryType(uint32_t typeBits, VkMemoryPropertyFlags requir
   for (int pass = 0; pass < 2; ++pass) {
     VkMemoryPropertyFlags want = pass == 0 ? (required | preferred) : required;
     for (uint32_t i = 0; i < memory_.memoryTypeCount; ++i)
-      if ((typeBits & (1u << i)) && (memory_.memoryTypes[i].propertyFlags & want) == want)
-        return i;
+      if ((typeBits & (1u << i)) && (memory_.memoryTypes[i].propertyFlags & want) == want) return i;
   }
   throw std::runtime_error("no Vulkan memory type with the required properties");
 }
 
 Unique<VkDeviceMemory> Context::allocate(const VkMemoryRequirements& req,
-                                         VkMemoryPropertyFlags required, uint32_t* typeIndex) const {
+                                         VkMemoryPropertyFlags required,
+                                         uint32_t* typeIndex) const {
   VkMemoryAllocateInfo alloc{VK_STRUCTURE_TYPE_MEMORY_ALLOCATE_INFO};
   alloc.allocationSize = req.size;
   alloc.memoryTypeIndex = findMemoryType(req.memoryTypeBits, required);
@@ -310,7 +316,8 @@ Unique<VkDeviceMemory> Context::allocate(const VkMemoryRequirements& req,
   VkDevice device = device_;
   VkDeviceMemory memory = VK_NULL_HANDLE;
   QL_VK(vkAllocateMemory(device, &alloc, nullptr, &memory));
-  return Unique<VkDeviceMemory>(memory, [device](VkDeviceMemory m) { vkFreeMemory(device, m, nullptr); });
+  return Unique<VkDeviceMemory>(memory,
+                                [device](VkDeviceMemory m) { vkFreeMemory(device, m, nullptr); });
 }
 
 void Context::submitAndWait(const std::function<void(VkCommandBuffer)>& record) const {
@@ -322,9 +329,8 @@ void Context::submitAndWait(const std::function<void(VkCommandBuffer)>& record) 
   QL_VK(vkAllocateCommandBuffers(device_, &alloc, &cmd));
   VkDevice device = device_;
   VkCommandPool pool = oneShotPool_;
-  Unique<VkCommandBuffer> owner(cmd, [device, pool](VkCommandBuffer c) {
-    vkFreeCommandBuffers(device, pool, 1, &c);
-  });
+  Unique<VkCommandBuffer> owner(
+      cmd, [device, pool](VkCommandBuffer c) { vkFreeCommandBuffers(device, pool, 1, &c); });
   VkCommandBufferBeginInfo begin{VK_STRUCTURE_TYPE_COMMAND_BUFFER_BEGIN_INFO};
   begin.flags = VK_COMMAND_BUFFER_USAGE_ONE_TIME_SUBMIT_BIT;
   QL_VK(vkBeginCommandBuffer(cmd, &begin));

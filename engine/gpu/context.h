@@ -52,7 +52,8 @@ class Context {
                           VkMemoryPropertyFlags preferred = 0) const;
   // Allocates memory of the first type with `required` properties that fits.
   Unique<VkDeviceMemory> allocate(const VkMemoryRequirements& requirements,
-                                  VkMemoryPropertyFlags required, uint32_t* typeIndex = nullptr) const;
+                                  VkMemoryPropertyFlags required,
+                                  uint32_t* typeIndex = nullptr) const;
 
   // Records with `record`, submits and waits (uploads, readbacks, tests).
   void submitAndWait(const std::function<void(VkCommandBuffer)>& record) const;
@@ -68,9 +69,9 @@ class Context {
   PFN_vkCmdPushDescriptorSetKHR cmdPushDescriptorSet = nullptr;
 
  private:
-  static VKAPI_ATTR VkBool32 VKAPI_CALL onValidationMessage(
-      VkDebugUtilsMessageSeverityFlagBitsEXT, VkDebugUtilsMessageTypeFlagsEXT,
-      const VkDebugUtilsMessengerCallbackDataEXT*, void*);
+  static VKAPI_ATTR VkBool32 VKAPI_CALL
+  onValidationMessage(VkDebugUtilsMessageSeverityFlagBitsEXT, VkDebugUtilsMessageTypeFlagsEXT,
+                      const VkDebugUtilsMessengerCallbackDataEXT*, void*);
   void createInstance(const ContextOptions& options);
   void pickPhysicalDevice(const ContextOptions& options);
   void createDevice();

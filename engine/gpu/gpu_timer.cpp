@@ -13,7 +13,8 @@ GpuTimer::GpuTimer(const Context& ctx, uint32_t maxPasses) : periodNs_(ctx.times
   info.queryCount = capacity_;
   VkQueryPool pool = VK_NULL_HANDLE;
   QL_VK(vkCreateQueryPool(device, &info, nullptr, &pool));
-  pool_ = Unique<VkQueryPool>(pool, [device](VkQueryPool p) { vkDestroyQueryPool(device, p, nullptr); });
+  pool_ = Unique<VkQueryPool>(pool,
+                              [device](VkQueryPool p) { vkDestroyQueryPool(device, p, nullptr); });
 }
 
 void GpuTimer::reset(VkCommandBuffer cmd) {

@@ -42,7 +42,8 @@ Image::Image(const Context& ctx, uint32_t width, uint32_t height, VkFormat forma
   viewInfo.subresourceRange = {VK_IMAGE_ASPECT_COLOR_BIT, 0, 1, 0, 1};
   VkImageView view = VK_NULL_HANDLE;
   QL_VK(vkCreateImageView(device, &viewInfo, nullptr, &view));
-  view_ = Unique<VkImageView>(view, [device](VkImageView v) { vkDestroyImageView(device, v, nullptr); });
+  view_ = Unique<VkImageView>(view,
+                              [device](VkImageView v) { vkDestroyImageView(device, v, nullptr); });
 
   // Compute passes use GENERAL throughout, so the only layout change is this one.
   ctx.submitAndWait([&](VkCommandBuffer cmd) {
@@ -70,15 +71,19 @@ Image::Image(const Context& ctx, uint32_t width, uint32_t height, VkFormat forma
 
 size_t Image::texelBytes() const {
   switch (format_) {
-    case VK_FORMAT_R32G32B32A32_SFLOAT: return 16;
-    case VK_FORMAT_R16G16B16A16_SFLOAT: return 8;
+    case VK_FORMAT_R32G32B32A32_SFLOAT:
+      return 16;
+    case VK_FORMAT_R16G16B16A16_SFLOAT:
+      return 8;
     case VK_FORMAT_R32_SFLOAT:
     case VK_FORMAT_R32_UINT:
     case VK_FORMAT_R8G8B8A8_UNORM:
     case VK_FORMAT_R8G8B8A8_SRGB:
     case VK_FORMAT_B8G8R8A8_UNORM:
-    case VK_FORMAT_B8G8R8A8_SRGB: return 4;
-    default: throw std::runtime_error("image " + name_ + ": texel size of this format unknown");
+    case VK_FORMAT_B8G8R8A8_SRGB:
+      return 4;
+    default:
+      throw std::runtime_error("image " + name_ + ": texel size of this format unknown");
   }
 }
 
@@ -97,9 +102,10 @@ void copyImageBuffer(VkCommandBuffer cmd, VkImage image, VkBuffer buffer, uint32
     vkCmdCopyImageToBuffer(cmd, image, VK_IMAGE_LAYOUT_GENERAL, buffer, 1, &region);
   else
     vkCmdCopyBufferToImage(cmd, buffer, image, VK_IMAGE_LAYOUT_GENERAL, 1, &region);
-  memoryBarrier(cmd, VK_PIPELINE_STAGE_2_COPY_BIT, VK_ACCESS_2_TRANSFER_WRITE_BIT,
-                VK_PIPELINE_STAGE_2_ALL_COMMANDS_BIT | VK_PIPELINE_STAGE_2_HOST_BIT,
-                VK_ACCESS_2_MEMORY_READ_BIT | VK_ACCESS_2_MEMORY_WRITE_BIT | VK_ACCESS_2_HOST_READ_BIT);
+  memoryBarrier(
+      cmd, VK_PIPELINE_STAGE_2_COPY_BIT, VK_ACCESS_2_TRANSFER_WRITE_BIT,
+      VK_PIPELINE_STAGE_2_ALL_COMMANDS_BIT | VK_PIPELINE_STAGE_2_HOST_BIT,
+      VK_ACCESS_2_MEMORY_READ_BIT | VK_ACCESS_2_MEMORY_WRITE_BIT | VK_ACCESS_2_HOST_READ_BIT);
 }
 }  // namespace
 

@@ -1,8 +1,8 @@
 #include "engine/gpu/pass_recorder.h"
 
-#include "engine/gpu/barrier.h"
-
 #include <stdexcept>
+
+#include "engine/gpu/barrier.h"
 
 namespace qlight::gpu {
 namespace {
@@ -14,11 +14,15 @@ constexpr VkPipelineStageFlags2 kTransfer = VK_PIPELINE_STAGE_2_ALL_TRANSFER_BIT
 bool compatible(VkDescriptorType type, bool isBuffer, bool isView, bool isImage) {
   switch (type) {
     case VK_DESCRIPTOR_TYPE_STORAGE_BUFFER:
-    case VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER: return isBuffer;
+    case VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER:
+      return isBuffer;
     case VK_DESCRIPTOR_TYPE_UNIFORM_TEXEL_BUFFER:
-    case VK_DESCRIPTOR_TYPE_STORAGE_TEXEL_BUFFER: return isView;
-    case VK_DESCRIPTOR_TYPE_STORAGE_IMAGE: return isImage;
-    default: return false;
+    case VK_DESCRIPTOR_TYPE_STORAGE_TEXEL_BUFFER:
+      return isView;
+    case VK_DESCRIPTOR_TYPE_STORAGE_IMAGE:
+      return isImage;
+    default:
+      return false;
   }
 }
 
@@ -108,7 +112,8 @@ void PassRecorder::synchronize(const std::string& pass, const std::vector<Resour
     ResourceState& s = states_[use.key];
     if (use.access == Access::Write) {
       s.writeStage = use.stage;
-      s.writeAccess = use.accessMask & (VK_ACCESS_2_SHADER_WRITE_BIT | VK_ACCESS_2_TRANSFER_WRITE_BIT);
+      s.writeAccess =
+          use.accessMask & (VK_ACCESS_2_SHADER_WRITE_BIT | VK_ACCESS_2_TRANSFER_WRITE_BIT);
       s.readStages = 0;
     } else {
       s.readStages |= use.stage;
@@ -131,7 +136,8 @@ void PassRecorder::bindDescriptors(const PassBuilder& b) {
       if (u.binding == rb.binding) use = &u;
     if (!use)
       throw std::logic_error("pass " + b.name_ + ": shader binding " + std::to_string(rb.binding) +
-                             " (" + rb.name + ", " + descriptorTypeName(rb.type) + ") is not bound");
+                             " (" + rb.name + ", " + descriptorTypeName(rb.type) +
+                             ") is not bound");
     if (!compatible(rb.type, use->buffer, use->view, use->image))
       throw std::logic_error("pass " + b.name_ + ": binding " + std::to_string(rb.binding) + " (" +
                              rb.name + ") is a " + descriptorTypeName(rb.type) +
@@ -213,10 +219,10 @@ void PassRecorder::fill(const std::string& name, const Buffer& buffer, uint32_t 
 
 void PassRecorder::copy(const std::string& name, const Buffer& src, const Buffer& dst,
                         VkDeviceSize bytes) {
-  synchronize(name, {{uint64_t((const void*)src.handle()), &src.name(), Access::Read,
-                      kTransfer, VK_ACCESS_2_TRANSFER_READ_BIT},
-                     {uint64_t((const void*)dst.handle()), &dst.name(), Access::Write,
-                      kTransfer, VK_ACCESS_2_TRANSFER_WRITE_BIT}});
+  synchronize(name, {{uint64_t((const void*)src.handle()), &src.name(), Access::Read, kTransfer,
+                      VK_ACCESS_2_TRANSFER_READ_BIT},
+                     {uint64_t((const void*)dst.handle()), &dst.name(), Access::Write, kTransfer,
+                      VK_ACCESS_2_TRANSFER_WRITE_BIT}});
   if (timer_) timer_->begin(cmd_, name);
   VkBufferCopy region{0, 0, bytes};
   vkCmdCopyBuffer(cmd_, src.handle(), dst.handle(), 1, &region);
@@ -234,9 +240,10 @@ void PassRecorder::clear(const std::string& name, const Image& image) {
 }
 
 void PassRecorder::finish() {
-  memoryBarrier(cmd_, kCompute | kTransfer, VK_ACCESS_2_SHADER_WRITE_BIT | VK_ACCESS_2_TRANSFER_WRITE_BIT,
-                VK_PIPELINE_STAGE_2_HOST_BIT | VK_PIPELINE_STAGE_2_ALL_COMMANDS_BIT,
-                VK_ACCESS_2_HOST_READ_BIT | VK_ACCESS_2_MEMORY_READ_BIT | VK_ACCESS_2_MEMORY_WRITE_BIT);
+  memoryBarrier(
+      cmd_, kCompute | kTransfer, VK_ACCESS_2_SHADER_WRITE_BIT | VK_ACCESS_2_TRANSFER_WRITE_BIT,
+      VK_PIPELINE_STAGE_2_HOST_BIT | VK_PIPELINE_STAGE_2_ALL_COMMANDS_BIT,
+      VK_ACCESS_2_HOST_READ_BIT | VK_ACCESS_2_MEMORY_READ_BIT | VK_ACCESS_2_MEMORY_WRITE_BIT);
   states_.clear();
 }
 

@@ -105,8 +105,8 @@ class PassRecorder {
     VkPipelineStageFlags2 readStages = 0;  // reads since the last write
   };
   void synchronize(const std::string& pass, const std::vector<ResourceUse>& uses);
-  void recordDispatch(PassBuilder& builder, const Buffer* indirect, VkDeviceSize offset,
-                      uint32_t x, uint32_t y, uint32_t z);
+  void recordDispatch(PassBuilder& builder, const Buffer* indirect, VkDeviceSize offset, uint32_t x,
+                      uint32_t y, uint32_t z);
   void bindDescriptors(const PassBuilder& builder);
 
   const Context& ctx_;

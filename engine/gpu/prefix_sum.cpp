@@ -17,9 +17,7 @@ static_assert(PrefixSum::kMaxSegmentLength >= shared::kMaxStrata,
               "a point's strata must fit one segment");
 
 PrefixSum::PrefixSum(const Context& ctx)
-    : ctx_(ctx),
-      tilesPipeline_(ctx, "prefix_sum_tiles"),
-      addPipeline_(ctx, "prefix_sum_add") {}
+    : ctx_(ctx), tilesPipeline_(ctx, "prefix_sum_tiles"), addPipeline_(ctx, "prefix_sum_add") {}
 
 const Buffer& PrefixSum::tileSums(uint32_t level, uint32_t tiles) {
   if (levels_.size() <= level) levels_.resize(level + 1);
@@ -54,8 +52,8 @@ void PrefixSum::scanLevel(PassRecorder& recorder, const Buffer& data, uint32_t c
 
 void PrefixSum::scan(PassRecorder& recorder, const Buffer& data, uint32_t count) {
   if (VkDeviceSize(count) * sizeof(float) > data.size())
-    throw std::invalid_argument("prefix sum of " + std::to_string(count) + " floats exceeds buffer " +
-                                data.name());
+    throw std::invalid_argument("prefix sum of " + std::to_string(count) +
+                                " floats exceeds buffer " + data.name());
   scanLevel(recorder, data, count, 0);
 }
 

@@ -9,11 +9,27 @@ namespace {
 
 // The few SPIR-V opcodes, decorations and storage classes the reflection needs.
 enum : uint32_t {
-  OpName = 5, OpExecutionMode = 16, OpTypeImage = 25, OpTypeSampler = 26,
-  OpTypeSampledImage = 27, OpTypeArray = 28, OpTypeRuntimeArray = 29, OpTypeStruct = 30,
-  OpTypePointer = 32, OpConstant = 43, OpVariable = 59, OpDecorate = 71, OpMemberDecorate = 72,
+  OpName = 5,
+  OpExecutionMode = 16,
+  OpTypeImage = 25,
+  OpTypeSampler = 26,
+  OpTypeSampledImage = 27,
+  OpTypeArray = 28,
+  OpTypeRuntimeArray = 29,
+  OpTypeStruct = 30,
+  OpTypePointer = 32,
+  OpConstant = 43,
+  OpVariable = 59,
+  OpDecorate = 71,
+  OpMemberDecorate = 72,
 };
-enum : uint32_t { DecBlock = 2, DecBufferBlock = 3, DecNonWritable = 24, DecBinding = 33, DecSet = 34 };
+enum : uint32_t {
+  DecBlock = 2,
+  DecBufferBlock = 3,
+  DecNonWritable = 24,
+  DecBinding = 33,
+  DecSet = 34
+};
 enum : uint32_t { ScUniformConstant = 0, ScUniform = 2, ScPushConstant = 9, ScStorageBuffer = 12 };
 constexpr uint32_t kExecutionModeLocalSize = 17;
 constexpr uint32_t kDimBuffer = 5;
@@ -27,15 +43,24 @@ struct TypeInfo {
 
 const char* descriptorTypeName(VkDescriptorType type) {
   switch (type) {
-    case VK_DESCRIPTOR_TYPE_STORAGE_BUFFER: return "storage buffer";
-    case VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER: return "uniform buffer";
-    case VK_DESCRIPTOR_TYPE_STORAGE_IMAGE: return "storage image";
-    case VK_DESCRIPTOR_TYPE_SAMPLED_IMAGE: return "sampled image";
-    case VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER: return "combined image sampler";
-    case VK_DESCRIPTOR_TYPE_UNIFORM_TEXEL_BUFFER: return "uniform texel buffer";
-    case VK_DESCRIPTOR_TYPE_STORAGE_TEXEL_BUFFER: return "storage texel buffer";
-    case VK_DESCRIPTOR_TYPE_SAMPLER: return "sampler";
-    default: return "unknown descriptor";
+    case VK_DESCRIPTOR_TYPE_STORAGE_BUFFER:
+      return "storage buffer";
+    case VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER:
+      return "uniform buffer";
+    case VK_DESCRIPTOR_TYPE_STORAGE_IMAGE:
+      return "storage image";
+    case VK_DESCRIPTOR_TYPE_SAMPLED_IMAGE:
+      return "sampled image";
+    case VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER:
+      return "combined image sampler";
+    case VK_DESCRIPTOR_TYPE_UNIFORM_TEXEL_BUFFER:
+      return "uniform texel buffer";
+    case VK_DESCRIPTOR_TYPE_STORAGE_TEXEL_BUFFER:
+      return "storage texel buffer";
+    case VK_DESCRIPTOR_TYPE_SAMPLER:
+      return "sampler";
+    default:
+      return "unknown descriptor";
   }
 }
 
@@ -49,7 +74,9 @@ ReflectedShader reflectSpirv(std::span<const uint32_t> words) {
   std::unordered_map<uint32_t, uint32_t> bindingOf, setOf;
   std::unordered_map<uint32_t, bool> isBlock, isBufferBlock, nonWritable;
   std::unordered_map<uint32_t, bool> memberNonWritable, memberWritable;
-  struct Var { uint32_t id, pointerType, storage; };
+  struct Var {
+    uint32_t id, pointerType, storage;
+  };
   std::vector<Var> vars;
 
   for (size_t i = 5; i < words.size();) {
@@ -57,7 +84,9 @@ ReflectedShader reflectSpirv(std::span<const uint32_t> words) {
     if (count == 0 || i + count > words.size()) throw std::runtime_error("truncated SPIR-V module");
     const uint32_t* w = &words[i];
     switch (op) {
-      case OpName: names[w[1]] = reinterpret_cast<const char*>(&w[2]); break;
+      case OpName:
+        names[w[1]] = reinterpret_cast<const char*>(&w[2]);
+        break;
       case OpExecutionMode:
         if (count >= 6 && w[2] == kExecutionModeLocalSize)
           out.localSize[0] = w[3], out.localSize[1] = w[4], out.localSize[2] = w[5];
@@ -75,12 +104,20 @@ ReflectedShader reflectSpirv(std::span<const uint32_t> words) {
       case OpConstant:
         if (count >= 4) constants[w[2]] = w[3];
         break;
-      case OpTypeImage: case OpTypeSampler: case OpTypeSampledImage: case OpTypeArray:
-      case OpTypeRuntimeArray: case OpTypeStruct: case OpTypePointer:
+      case OpTypeImage:
+      case OpTypeSampler:
+      case OpTypeSampledImage:
+      case OpTypeArray:
+      case OpTypeRuntimeArray:
+      case OpTypeStruct:
+      case OpTypePointer:
         types[w[1]] = TypeInfo{op, std::vector<uint32_t>(w + 2, w + count)};
         break;
-      case OpVariable: vars.push_back({w[2], w[1], w[3]}); break;
-      default: break;
+      case OpVariable:
+        vars.push_back({w[2], w[1], w[3]});
+        break;
+      default:
+        break;
     }
     i += count;
   }
@@ -98,8 +135,8 @@ ReflectedShader reflectSpirv(std::span<const uint32_t> words) {
       throw std::runtime_error("SPIR-V variable " + b.name + " is not a pointer");
     uint32_t typeId = pointer->second.operands[1];
     // Unwrap arrays of descriptors.
-    while (types.count(typeId) && (types[typeId].op == OpTypeArray ||
-                                   types[typeId].op == OpTypeRuntimeArray)) {
+    while (types.count(typeId) &&
+           (types[typeId].op == OpTypeArray || types[typeId].op == OpTypeRuntimeArray)) {
       if (types[typeId].op == OpTypeArray) b.count *= constants[types[typeId].operands[1]];
       typeId = types[typeId].operands[0];
     }
@@ -118,15 +155,16 @@ ReflectedShader reflectSpirv(std::span<const uint32_t> words) {
     } else if (t.op == OpTypeSampledImage) {
       const TypeInfo& image = types[t.operands[0]];
       b.type = image.operands[1] == kDimBuffer ? VK_DESCRIPTOR_TYPE_UNIFORM_TEXEL_BUFFER
-                                              : VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER;
+                                               : VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER;
       b.readOnly = true;
     } else if (t.op == OpTypeImage) {
       // operands: sampled type, dim, depth, arrayed, ms, sampled(1 = sampled, 2 = storage), format
       bool storage = t.operands[5] == 2;
       bool buffer = t.operands[1] == kDimBuffer;
-      b.type = buffer ? (storage ? VK_DESCRIPTOR_TYPE_STORAGE_TEXEL_BUFFER
-                                 : VK_DESCRIPTOR_TYPE_UNIFORM_TEXEL_BUFFER)
-                      : (storage ? VK_DESCRIPTOR_TYPE_STORAGE_IMAGE : VK_DESCRIPTOR_TYPE_SAMPLED_IMAGE);
+      b.type =
+          buffer ? (storage ? VK_DESCRIPTOR_TYPE_STORAGE_TEXEL_BUFFER
+                            : VK_DESCRIPTOR_TYPE_UNIFORM_TEXEL_BUFFER)
+                 : (storage ? VK_DESCRIPTOR_TYPE_STORAGE_IMAGE : VK_DESCRIPTOR_TYPE_SAMPLED_IMAGE);
       if (!storage) b.readOnly = true;
     } else {
       throw std::runtime_error("SPIR-V binding " + std::to_string(b.binding) + " (" + b.name +

@@ -13,8 +13,8 @@ const char* vkResultName(VkResult result);
 
 }  // namespace qlight::gpu
 
-#define QL_VK(call)                                                        \
-  do {                                                                     \
-    VkResult ql_vk_result_ = (call);                                       \
+#define QL_VK(call)                                                                     \
+  do {                                                                                  \
+    VkResult ql_vk_result_ = (call);                                                    \
     if (ql_vk_result_ != VK_SUCCESS) ::qlight::gpu::throwVkError(#call, ql_vk_result_); \
   } while (0)

@@ -4,7 +4,6 @@
 // its index in the GPU point array, kept for the point's lifetime (PointSet).
 #pragma once
 #include <cstddef>
-
 #include <glm/glm.hpp>
 
 #include "shaders/shared/guiding_types.h"

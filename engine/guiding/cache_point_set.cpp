@@ -20,9 +20,10 @@ CachePointSet::CachePointSet(const gpu::Context& ctx, uint32_t budget, float sea
   grid_.cellSize = searchRadius > 0.0f ? 2.0f * searchRadius : 1.0f;  // no points yet: any
   grid_.hashSize = nextPowerOfTwo(std::max<uint32_t>(2 * budget, 1024));
   grid_.buckets.assign(grid_.hashSize + 1, 0);
-  points_ = std::make_unique<gpu::Buffer>(ctx, std::max<uint64_t>(uint64_t(budget) * sizeof(CachePoint), 16),
-                                          "guiding.points", kTexel);
-  buckets_ = std::make_unique<gpu::Buffer>(ctx, (grid_.hashSize + 1ull) * 4, "guiding.gridBuckets", kTexel);
+  points_ = std::make_unique<gpu::Buffer>(
+      ctx, std::max<uint64_t>(uint64_t(budget) * sizeof(CachePoint), 16), "guiding.points", kTexel);
+  buckets_ = std::make_unique<gpu::Buffer>(ctx, (grid_.hashSize + 1ull) * 4, "guiding.gridBuckets",
+                                           kTexel);
   gridPoints_ = std::make_unique<gpu::Buffer>(ctx, std::max<uint64_t>(uint64_t(budget) * 4, 16),
                                               "guiding.gridPoints", kTexel);
   pointsView_ = std::make_unique<gpu::BufferView>(ctx, *points_, VK_FORMAT_R32G32B32A32_SFLOAT);
@@ -59,7 +60,8 @@ bool CachePointSet::add(ecs::Registry& registry, CachePoint point) {
 
 void CachePointSet::clear(ecs::Registry& registry) {
   std::vector<ecs::Entity> all;
-  registry.view<const CachePoint>().each([&](ecs::Entity e, const CachePoint&) { all.push_back(e); });
+  registry.view<const CachePoint>().each(
+      [&](ecs::Entity e, const CachePoint&) { all.push_back(e); });
   for (ecs::Entity e : all) registry.destroy(e);
   std::fill(used_.begin(), used_.end(), 0);
   std::fill(everUsed_.begin(), everUsed_.end(), 0);  // the tables are reset with the points
@@ -103,7 +105,8 @@ void CachePointSet::uploadChanged(ecs::Registry& registry) {
   while (i < dirty.end) {
     size_t j = i + 1;
     while (j < dirty.end && values[j].slot == values[j - 1].slot + 1) ++j;
-    points_->upload(ctx_, values + i, (j - i) * sizeof(CachePoint), uint64_t(values[i].slot) * sizeof(CachePoint));
+    points_->upload(ctx_, values + i, (j - i) * sizeof(CachePoint),
+                    uint64_t(values[i].slot) * sizeof(CachePoint));
     i = j;
   }
   if (!dirty.empty()) gridStale_ = true;
@@ -117,7 +120,8 @@ void CachePointSet::uploadGrid(ecs::Registry& registry) {
   for (const CachePoint& p : storage.values()) slots.push_back(p.slot);
   grid_ = buildPointGrid(storage.values(), grid_.cellSize, grid_.hashSize, slots);
   buckets_->upload(ctx_, grid_.buckets.data(), grid_.buckets.size() * 4);
-  if (!grid_.points.empty()) gridPoints_->upload(ctx_, grid_.points.data(), grid_.points.size() * 4);
+  if (!grid_.points.empty())
+    gridPoints_->upload(ctx_, grid_.points.data(), grid_.points.size() * 4);
 }
 
 }  // namespace qlight::guiding

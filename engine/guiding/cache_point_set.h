@@ -28,8 +28,8 @@ class CachePointSet {
   // destroyed points that have been taken again since (their learned rows need a reset).
   std::vector<uint32_t> sync(ecs::Registry& registry);
 
-  uint32_t count() const { return live_; }     // live points
-  uint32_t slotEnd() const { return top_; }    // slots below this may be in use
+  uint32_t count() const { return live_; }   // live points
+  uint32_t slotEnd() const { return top_; }  // slots below this may be in use
   uint32_t budget() const { return uint32_t(used_.size()); }
   float searchRadius() const { return searchRadius_; }
   const PointGrid& grid() const { return grid_; }
@@ -47,11 +47,11 @@ class CachePointSet {
 
   const gpu::Context& ctx_;
   float searchRadius_;
-  std::vector<uint8_t> used_;          // per slot
-  std::vector<uint8_t> everUsed_;      // per slot: its table row has learned something
-  std::vector<uint32_t> freeSlots_;    // freed slots below top_, highest first
-  std::vector<uint32_t> reused_;       // freed slots taken again since the last sync
-  uint32_t top_ = 0;                   // slots at or above this were never used
+  std::vector<uint8_t> used_;        // per slot
+  std::vector<uint8_t> everUsed_;    // per slot: its table row has learned something
+  std::vector<uint32_t> freeSlots_;  // freed slots below top_, highest first
+  std::vector<uint32_t> reused_;     // freed slots taken again since the last sync
+  uint32_t top_ = 0;                 // slots at or above this were never used
   uint32_t live_ = 0;
   bool gridStale_ = true;
   PointGrid grid_;

@@ -14,9 +14,11 @@ void validate(const GuidingSettings& s) {
                                 std::to_string(shared::kMaxStrata));
   if (!finite(s.alphaMin) || !finite(s.alphaMax) || s.alphaMin <= 0 || s.alphaMax > 1 ||
       s.alphaMin > s.alphaMax)
-    throw std::invalid_argument("learning rate bounds must satisfy 0 < alpha-min <= alpha-max <= 1");
+    throw std::invalid_argument(
+        "learning rate bounds must satisfy 0 < alpha-min <= alpha-max <= 1");
   if (!finite(s.selectProbability) || s.selectProbability < 0 || s.selectProbability > 0.95f)
-    throw std::invalid_argument("guided selection probability must be in [0, 0.95] (BSDF sampling keeps the rest)");
+    throw std::invalid_argument(
+        "guided selection probability must be in [0, 0.95] (BSDF sampling keeps the rest)");
   if (!finite(s.qFloor) || s.qFloor <= 0) throw std::invalid_argument("Q floor must be positive");
   if (s.pointBudget == 0 || s.pointBudget > (1u << 20))
     throw std::invalid_argument("point budget must be 1..1048576");
@@ -24,8 +26,10 @@ void validate(const GuidingSettings& s) {
       s.rejectionMax < 0 || (s.rejectionMax > 0 && s.rejectionMax < s.rejectionMin))
     throw std::invalid_argument("rejection distances must be >= 0 with max >= min");
   if (!finite(s.lightMix) || s.lightMix < 0 || s.lightMix > 0.95f)
-    throw std::invalid_argument("light mix must be in [0, 0.95] (power-based choice keeps the rest)");
-  if (s.dartBounces == 0 || s.dartBounces > 64) throw std::invalid_argument("dart bounces must be 1..64");
+    throw std::invalid_argument(
+        "light mix must be in [0, 0.95] (power-based choice keeps the rest)");
+  if (s.dartBounces == 0 || s.dartBounces > 64)
+    throw std::invalid_argument("dart bounces must be 1..64");
 }
 
 void parseStrata(const std::string& text, GuidingSettings& s) {

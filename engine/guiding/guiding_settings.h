@@ -11,16 +11,16 @@ enum class PointSet : uint32_t {
 };
 
 struct GuidingSettings {
-  bool enabled = true;      // --guiding q|off
-  uint32_t rows = 8;        // strata: rows x cols, equal solid angle
+  bool enabled = true;  // --guiding q|off
+  uint32_t rows = 8;    // strata: rows x cols, equal solid angle
   uint32_t cols = 8;
-  float alphaMin = 1e-4f;   // learning rate clamp(1/(1+visits), min, max), vM's bounds
+  float alphaMin = 1e-4f;  // learning rate clamp(1/(1+visits), min, max), vM's bounds
   float alphaMax = 0.05f;
   // Guided vs BSDF sampling (times the diffuse share and the point's confidence). On the
   // door scene without NEE, 0.5 gives relMSE 5.95 vs 10.2 unguided (3 seeds); 0.8 finds the
   // light more often but lets fireflies through (BSDF-sampled paths in low-Q directions).
   float selectProbability = 0.5f;
-  float qFloor = 1e-4f;     // Q stays above this: every direction stays possible
+  float qFloor = 1e-4f;  // Q stays above this: every direction stays possible
   // Updates per stratum before a point guides at the full share (fewer: BSDF
   // sampling takes over in proportion); 0 trusts every point at once.
   float confidenceUpdates = 4.0f;
@@ -29,13 +29,13 @@ struct GuidingSettings {
   float rejectionMin = 0.0f;     // 0: from the budget and the scene's surface area
   float rejectionMax = 0.0f;     // 0: 3 x min (Poisson-AO variant)
   PointSet pointSet = PointSet::PhotonMap;
-  float normalCosine = 0.7f;     // compatible point normals (about 45 degrees)
-  uint32_t dartPaths = 65536;    // light paths that drop candidate points
+  float normalCosine = 0.7f;   // compatible point normals (about 45 degrees)
+  uint32_t dartPaths = 65536;  // light paths that drop candidate points
   uint32_t dartBounces = 4;
-  bool spawnFromCamera = true;   // add points where camera paths land uncovered
-  bool learn = true;             // update Q every frame (off: keep what was learned)
-  bool lightLearning = true;     // D&K section 4: learned light selection for NEE
-  float lightMix = 0.5f;         // share of the learned light choice
+  bool spawnFromCamera = true;  // add points where camera paths land uncovered
+  bool learn = true;            // update Q every frame (off: keep what was learned)
+  bool lightLearning = true;    // D&K section 4: learned light selection for NEE
+  float lightMix = 0.5f;        // share of the learned light choice
   uint32_t seed = 1;
 
   uint32_t strata() const { return rows * cols; }

@@ -20,14 +20,16 @@ uint32_t floatBits(float f) {
   return u;
 }
 
-std::unique_ptr<gpu::Buffer> makeTableBuffer(const gpu::Context& ctx, uint64_t bytes, const std::string& name) {
+std::unique_ptr<gpu::Buffer> makeTableBuffer(const gpu::Context& ctx, uint64_t bytes,
+                                             const std::string& name) {
   return std::make_unique<gpu::Buffer>(ctx, std::max<uint64_t>(bytes, 16), name,
                                        VK_BUFFER_USAGE_UNIFORM_TEXEL_BUFFER_BIT);
 }
 
 }  // namespace
 
-void LearnedTable::allocate(const gpu::Context& ctx, uint64_t slots, uint32_t length, const std::string& name) {
+void LearnedTable::allocate(const gpu::Context& ctx, uint64_t slots, uint32_t length,
+                            const std::string& name) {
   rowLength = length;
   const uint64_t entries = std::max<uint64_t>(slots * length, 1);
   cdfView.reset();
@@ -39,13 +41,16 @@ void LearnedTable::allocate(const gpu::Context& ctx, uint64_t slots, uint32_t le
   cdfView = std::make_unique<gpu::BufferView>(ctx, *cdf, VK_FORMAT_R32_SFLOAT);
 }
 
-void LearnedTable::recordReset(gpu::PassRecorder& rec, float initial, uint64_t first, uint64_t count) const {
+void LearnedTable::recordReset(gpu::PassRecorder& rec, float initial, uint64_t first,
+                               uint64_t count) const {
   const uint64_t firstEntry = first * rowLength, entries = count * rowLength;
   if (entries == 0) return;  // an empty table (V without learned lights)
   const bool whole = first == 0 && entries * 4 >= values->size();
   auto fill = [&](const gpu::Buffer& b, uint32_t value, uint64_t entryBytes) {
-    if (whole) rec.fill("guiding.reset", b, value);
-    else rec.fill("guiding.reset", b, value, firstEntry * entryBytes, entries * entryBytes);
+    if (whole)
+      rec.fill("guiding.reset", b, value);
+    else
+      rec.fill("guiding.reset", b, value, firstEntry * entryBytes, entries * entryBytes);
   };
   fill(*values, floatBits(initial), 4);
   fill(*visits, 0, 4);
@@ -58,9 +63,12 @@ uint64_t LearnedTable::memoryBytes() const {
   return values->size() + visits->size() + cdf->size() + sums->size() + counts->size();
 }
 
-uint64_t LearnedTables::memoryBytes() const { return q_.memoryBytes() + v_.memoryBytes() + pointUpdates_->size(); }
+uint64_t LearnedTables::memoryBytes() const {
+  return q_.memoryBytes() + v_.memoryBytes() + pointUpdates_->size();
+}
 
-LearnedTables::LearnedTables(const gpu::Context& ctx) : ctx_(ctx), scan_(ctx), update_(ctx, "q_update") {}
+LearnedTables::LearnedTables(const gpu::Context& ctx)
+    : ctx_(ctx), scan_(ctx), update_(ctx, "q_update") {}
 
 void LearnedTables::allocate(uint32_t slots, uint32_t strata, uint32_t lights) {
   slots_ = slots;
@@ -95,15 +103,18 @@ void LearnedTables::recordResetRows(gpu::PassRecorder& rec, std::span<const uint
   }
 }
 
-void LearnedTables::recordLearning(gpu::PassRecorder& rec, uint32_t rows, const GuidingSettings& settings) {
+void LearnedTables::recordLearning(gpu::PassRecorder& rec, uint32_t rows,
+                                   const GuidingSettings& settings) {
   recordTables(rec, rows, settings);
 }
 
-void LearnedTables::recordTables(gpu::PassRecorder& rec, uint32_t rows, const GuidingSettings& settings) {
+void LearnedTables::recordTables(gpu::PassRecorder& rec, uint32_t rows,
+                                 const GuidingSettings& settings) {
   if (rows == 0) return;
   auto updateTable = [&](const char* name, const LearnedTable& table, bool cosine) {
-    shared::TableUpdatePush push{rows * table.rowLength, table.rowLength, settings.rows, settings.cols,
-                                 cosine ? 1u : 0u, settings.alphaMin, settings.alphaMax, settings.qFloor};
+    shared::TableUpdatePush push{rows * table.rowLength, table.rowLength,  settings.rows,
+                                 settings.cols,          cosine ? 1u : 0u, settings.alphaMin,
+                                 settings.alphaMax,      settings.qFloor};
     rec.pass(name, update_)
         .write(QL_Q_UPDATE_BIND_VALUES, *table.values)
         .write(QL_Q_UPDATE_BIND_VISITS, *table.visits)

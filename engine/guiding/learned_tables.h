@@ -23,7 +23,8 @@ struct LearnedTable {
   std::unique_ptr<gpu::BufferView> cdfView;  // the path passes read the CDF as a texel buffer
   uint32_t rowLength = 0;                    // entries per slot
 
-  void allocate(const gpu::Context& ctx, uint64_t slots, uint32_t rowLength, const std::string& name);
+  void allocate(const gpu::Context& ctx, uint64_t slots, uint32_t rowLength,
+                const std::string& name);
   // Fills the rows [first, first + count) with `initial` values and no visits or targets.
   void recordReset(gpu::PassRecorder& rec, float initial, uint64_t first, uint64_t count) const;
   uint64_t memoryBytes() const;

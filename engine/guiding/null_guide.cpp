@@ -11,7 +11,8 @@ NullGuide::NullGuide(const gpu::Context& ctx) {
   off.hashSize = 1;
   uniforms_ = std::make_unique<gpu::Buffer>(ctx, sizeof(off), "guiding.off");
   uniforms_->upload(ctx, &off, sizeof(off));
-  empty_ = std::make_unique<gpu::Buffer>(ctx, 64, "guiding.empty", VK_BUFFER_USAGE_UNIFORM_TEXEL_BUFFER_BIT);
+  empty_ = std::make_unique<gpu::Buffer>(ctx, 64, "guiding.empty",
+                                         VK_BUFFER_USAGE_UNIFORM_TEXEL_BUFFER_BIT);
   std::vector<uint8_t> zeros(64, 0);
   empty_->upload(ctx, zeros.data(), zeros.size());
   emptyFloats_ = std::make_unique<gpu::BufferView>(ctx, *empty_, VK_FORMAT_R32_SFLOAT);
@@ -19,7 +20,8 @@ NullGuide::NullGuide(const gpu::Context& ctx) {
   emptyUints_ = std::make_unique<gpu::BufferView>(ctx, *empty_, VK_FORMAT_R32_UINT);
   // Written bindings get their own buffers so no two bindings of one pass alias.
   for (int i = 0; i < 5; ++i) {
-    writable_.push_back(std::make_unique<gpu::Buffer>(ctx, 64, "guiding.unused" + std::to_string(i)));
+    writable_.push_back(
+        std::make_unique<gpu::Buffer>(ctx, 64, "guiding.unused" + std::to_string(i)));
     writable_.back()->upload(ctx, zeros.data(), zeros.size());
   }
 }

@@ -74,9 +74,10 @@ void PointGenerator::throwDarts(ecs::Registry& registry, const render::GpuScene&
   for (size_t i = 0; 2 * i < raw.size() && set.count() < set.budget(); ++i) {
     if (!std::isfinite(raw[2 * i].x)) continue;  // the dart's path ended before this bounce
     PointCandidate c{glm::vec3(raw[2 * i]), glm::vec3(raw[2 * i + 1]), raw[2 * i].w};
-    float radius = settings.pointSet == PointSet::PhotonMap
-                       ? radii.rejectionMin
-                       : radii.rejectionMax + (radii.rejectionMin - radii.rejectionMax) * c.occlusion;
+    float radius =
+        settings.pointSet == PointSet::PhotonMap
+            ? radii.rejectionMin
+            : radii.rejectionMax + (radii.rejectionMin - radii.rejectionMax) * c.occlusion;
     CachePoint accepted;
     if (acceptor_->tryAccept(c, radius, accepted)) set.add(registry, accepted);
   }
@@ -86,7 +87,8 @@ uint64_t PointGenerator::memoryBytes() const {
   return spawn_.size() + (candidates_ ? candidates_->size() : 0);
 }
 
-uint32_t PointGenerator::acceptSpawns(ecs::Registry& registry, const PointRadii& radii, CachePointSet& set) {
+uint32_t PointGenerator::acceptSpawns(ecs::Registry& registry, const PointRadii& radii,
+                                      CachePointSet& set) {
   if (!acceptor_) return 0;
   // Fixed slots (w = 1 where written this frame), read in slot order: the points added do
   // not depend on the GPU's timing.
@@ -101,7 +103,8 @@ uint32_t PointGenerator::acceptSpawns(ecs::Registry& registry, const PointRadii&
     if (raw[2 * i].w == 0.0f) continue;
     PointCandidate c{glm::vec3(raw[2 * i]), glm::vec3(raw[2 * i + 1]), 0.0f};
     CachePoint accepted;
-    if (acceptor_->tryAccept(c, radii.rejectionMin, accepted) && set.add(registry, accepted)) ++added;
+    if (acceptor_->tryAccept(c, radii.rejectionMin, accepted) && set.add(registry, accepted))
+      ++added;
   }
   return added;
 }

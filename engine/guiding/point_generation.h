@@ -7,9 +7,9 @@
 #include <memory>
 
 #include "engine/gpu/compute_pipeline.h"
+#include "engine/guiding/cache_point_set.h"
 #include "engine/guiding/guiding_settings.h"
 #include "engine/guiding/point_acceptance.h"
-#include "engine/guiding/cache_point_set.h"
 #include "engine/render/gpu_scene.h"
 
 namespace qlight::guiding {

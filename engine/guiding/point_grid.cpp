@@ -35,7 +35,8 @@ PointGrid buildPointGrid(std::span<const CachePoint> points, float cellSize, uin
   for (uint32_t b = 0; b < hashSize; ++b) g.buckets[b + 1] += g.buckets[b];
   g.points.resize(points.size());
   std::vector<uint32_t> cursor(g.buckets.begin(), g.buckets.end() - 1);
-  for (size_t i = 0; i < points.size(); ++i) g.points[cursor[bucketOf[i]]++] = ids.empty() ? uint32_t(i) : ids[i];
+  for (size_t i = 0; i < points.size(); ++i)
+    g.points[cursor[bucketOf[i]]++] = ids.empty() ? uint32_t(i) : ids[i];
   return g;
 }
 

@@ -16,7 +16,8 @@ uint32_t learnedLightCount(const GuidingSettings& s, uint32_t sceneLights) {
   if (sceneLights <= gpu::PrefixSum::kMaxSegmentLength &&
       uint64_t(sceneLights) * s.pointBudget <= kMaxLightEntries)
     return sceneLights;
-  std::fprintf(stderr, "qlight: light-selection learning off: %u lights x %u points exceeds its table\n",
+  std::fprintf(stderr,
+               "qlight: light-selection learning off: %u lights x %u points exceeds its table\n",
                sceneLights, s.pointBudget);
   return 0;
 }
@@ -28,7 +29,8 @@ QGuide::QGuide(const gpu::Context& ctx, const GuidingSettings& settings)
       settings_(settings),
       generator_(ctx),
       tables_(ctx),
-      uniforms_(ctx, sizeof(shared::GuidingUniforms), "guiding.uniforms", 0, gpu::MemoryUse::HostVisible) {
+      uniforms_(ctx, sizeof(shared::GuidingUniforms), "guiding.uniforms", 0,
+                gpu::MemoryUse::HostVisible) {
   validate(settings_);
   // Bindable before the first generatePoints: an empty set and tables, everything off.
   points_ = std::make_unique<CachePointSet>(ctx_, settings_.pointBudget, 0.0f);
@@ -63,7 +65,8 @@ void QGuide::generatePoints(ecs::Registry& registry, const render::GpuScene& sce
   radii_ = choosePointRadii(settings_, scene.surfaceArea());
   points_ = std::make_unique<CachePointSet>(ctx_, settings_.pointBudget, radii_.searchRadius);
   tables_.allocate(settings_.pointBudget, settings_.strata(), lights);
-  generator_.throwDarts(registry, scene, settings_, radii_, settings_.seed + 7919u * ++generation_, *points_);
+  generator_.throwDarts(registry, scene, settings_, radii_, settings_.seed + 7919u * ++generation_,
+                        *points_);
   needsPoints_ = false;
   tables_.reset(settings_);
   uploadPoints(registry);
@@ -95,7 +98,8 @@ void QGuide::writeUniforms() {
   if (on) u.flags |= shared::kGuideSample;
   if (on && settings_.learn) u.flags |= shared::kGuideLearn;
   if (on && tables_.lights() > 0) u.flags |= shared::kGuideLightLearn;
-  if (settings_.enabled && settings_.spawnFromCamera && count < settings_.pointBudget && generator_.spawning())
+  if (settings_.enabled && settings_.spawnFromCamera && count < settings_.pointBudget &&
+      generator_.spawning())
     u.flags |= shared::kGuideSpawn;
   u.searchRadius = radii_.searchRadius;
   u.cellSize = points_->grid().cellSize;
@@ -142,7 +146,8 @@ void QGuide::recordLearning(gpu::PassRecorder& rec) {
 }
 
 uint64_t QGuide::memoryBytes() const {
-  return points_->memoryBytes() + tables_.memoryBytes() + generator_.memoryBytes() + uniforms_.size();
+  return points_->memoryBytes() + tables_.memoryBytes() + generator_.memoryBytes() +
+         uniforms_.size();
 }
 
 GuidingStats QGuide::stats() const {

@@ -93,8 +93,8 @@ LinearImage readPfm(const std::filesystem::path& path) {
   float scale = 0;
   in >> magic >> img.width >> img.height >> scale;
   in.get();
-  if (magic != "PF" || img.width == 0 || img.height == 0 || scale >= 0 ||
-      img.width > 65536 || img.height > 65536)
+  if (magic != "PF" || img.width == 0 || img.height == 0 || scale >= 0 || img.width > 65536 ||
+      img.height > 65536)
     throw std::runtime_error(path.string() + ": not a little-endian RGB PFM");
   img.rgba.assign(size_t(img.width) * img.height * 4, 1.0f);
   std::vector<float> row(size_t(img.width) * 3);

@@ -15,8 +15,8 @@ enum class Tonemap : uint32_t { Clamp = 0, Aces = 1 };
 
 // Picks the format from the extension (.png, .pfm, .exr); throws std::runtime_error
 // naming the file on an unknown extension or a failed write.
-void writeImage(const std::filesystem::path& path, const LinearImage& image,
-                float exposure = 1.0f, Tonemap tonemap = Tonemap::Aces);
+void writeImage(const std::filesystem::path& path, const LinearImage& image, float exposure = 1.0f,
+                Tonemap tonemap = Tonemap::Aces);
 
 // Throws std::runtime_error naming the file unless it ends in .png, .pfm or .exr
 // (checked before rendering, so a typo does not cost a render).

@@ -86,7 +86,8 @@ void GpuScene::uploadStatic() {
   std::vector<GpuMaterial> materials;
   for (auto& m : asset_.materials) {
     materials.push_back(toGpu(m));
-    hasTextures_ |= m.baseColorTexture >= 0 || m.metallicRoughnessTexture >= 0 || m.emissiveTexture >= 0;
+    hasTextures_ |=
+        m.baseColorTexture >= 0 || m.metallicRoughnessTexture >= 0 || m.emissiveTexture >= 0;
   }
   if (materials.empty()) materials.push_back(toGpu(scene::MaterialAsset{}));
 
@@ -105,8 +106,10 @@ void GpuScene::uploadStatic() {
   constexpr VkBufferUsageFlags texel = VK_BUFFER_USAGE_UNIFORM_TEXEL_BUFFER_BIT;
   vertices_ = makeBuffer(ctx_, vertices, "scene.vertices", texel);
   materials_ = makeBuffer(ctx_, materials, "scene.materials", texel);
-  verticesView_ = std::make_unique<gpu::BufferView>(ctx_, *vertices_, VK_FORMAT_R32G32B32A32_SFLOAT);
-  materialsView_ = std::make_unique<gpu::BufferView>(ctx_, *materials_, VK_FORMAT_R32G32B32A32_SFLOAT);
+  verticesView_ =
+      std::make_unique<gpu::BufferView>(ctx_, *vertices_, VK_FORMAT_R32G32B32A32_SFLOAT);
+  materialsView_ =
+      std::make_unique<gpu::BufferView>(ctx_, *materials_, VK_FORMAT_R32G32B32A32_SFLOAT);
   textures_ = makeBuffer(ctx_, textures, "scene.textures");
   texels_ = makeBuffer(ctx_, texels, "scene.texels", VK_BUFFER_USAGE_UNIFORM_TEXEL_BUFFER_BIT);
   texelView_ = std::make_unique<gpu::BufferView>(ctx_, *texels_, VK_FORMAT_R32_UINT);
@@ -124,7 +127,8 @@ void GpuScene::uploadLights(const SceneDraw& draw) {
       if (!m.isEmissive()) continue;
       glm::vec3 p[3];
       for (int k = 0; k < 3; ++k)
-        p[k] = glm::vec3(d.worldFromObject * glm::vec4(mesh.positions[mesh.indices[t * 3 + k]], 1.0f));
+        p[k] =
+            glm::vec3(d.worldFromObject * glm::vec4(mesh.positions[mesh.indices[t * 3 + k]], 1.0f));
       GpuLight l{};
       l.type = shared::kLightTriangle;
       l.position = p[0];
@@ -188,7 +192,8 @@ void GpuScene::uploadLights(const SceneDraw& draw) {
   lightCdf_ = makeBuffer(ctx_, cdf, "scene.lightCdf", texel);
   triangleBuffer_ = makeBuffer(ctx_, triangles_, "scene.triangles", texel);
   lightCdfView_ = std::make_unique<gpu::BufferView>(ctx_, *lightCdf_, VK_FORMAT_R32_SFLOAT);
-  triangleView_ = std::make_unique<gpu::BufferView>(ctx_, *triangleBuffer_, VK_FORMAT_R32G32B32A32_UINT);
+  triangleView_ =
+      std::make_unique<gpu::BufferView>(ctx_, *triangleBuffer_, VK_FORMAT_R32G32B32A32_UINT);
 }
 
 void GpuScene::update(const SceneDraw& draw) {
@@ -201,7 +206,8 @@ void GpuScene::update(const SceneDraw& draw) {
     for (size_t t = 0; t < mesh.triangleCount(); ++t) {
       glm::vec3 p[3];
       for (int k = 0; k < 3; ++k)
-        p[k] = glm::vec3(d.worldFromObject * glm::vec4(mesh.positions[mesh.indices[t * 3 + k]], 1.0f));
+        p[k] =
+            glm::vec3(d.worldFromObject * glm::vec4(mesh.positions[mesh.indices[t * 3 + k]], 1.0f));
       surfaceArea_ += 0.5f * glm::length(glm::cross(p[1] - p[0], p[2] - p[0]));
     }
   }
@@ -209,7 +215,8 @@ void GpuScene::update(const SceneDraw& draw) {
   for (const MeshDraw& d : draw.meshes) {
     shared::GpuInstance inst{};
     glm::mat3 n = glm::transpose(glm::inverse(glm::mat3(d.worldFromObject)));
-    for (int r = 0; r < 3; ++r) inst.normalFromObject[r] = glm::vec4(n[0][r], n[1][r], n[2][r], 0.0f);
+    for (int r = 0; r < 3; ++r)
+      inst.normalFromObject[r] = glm::vec4(n[0][r], n[1][r], n[2][r], 0.0f);
     inst.firstTriangle = meshFirstTriangle_[d.mesh];
     inst.mesh = d.mesh;
     instances.push_back(inst);
@@ -219,7 +226,8 @@ void GpuScene::update(const SceneDraw& draw) {
   bvhNodes_ = makeBuffer(ctx_, accel_.nodeTexels(), "bvh.nodes", texel);
   bvhTris_ = makeBuffer(ctx_, accel_.triangleTexels(), "bvh.triangles", texel);
   bvhInstances_ = makeBuffer(ctx_, accel_.instanceTexels(), "bvh.instances", texel);
-  bvhNodesView_ = std::make_unique<gpu::BufferView>(ctx_, *bvhNodes_, VK_FORMAT_R32G32B32A32_SFLOAT);
+  bvhNodesView_ =
+      std::make_unique<gpu::BufferView>(ctx_, *bvhNodes_, VK_FORMAT_R32G32B32A32_SFLOAT);
   bvhTrisView_ = std::make_unique<gpu::BufferView>(ctx_, *bvhTris_, VK_FORMAT_R32G32B32A32_SFLOAT);
   bvhInstancesView_ =
       std::make_unique<gpu::BufferView>(ctx_, *bvhInstances_, VK_FORMAT_R32G32B32A32_SFLOAT);

@@ -37,7 +37,9 @@ class GpuScene {
   float surfaceArea() const { return surfaceArea_; }
   // Features the path tracing passes are specialized on.
   bool hasTextures() const { return hasTextures_; }
-  bool hasNonTriangleLights() const { return hasNonTriangleLights_; }  // world space, of the last update
+  bool hasNonTriangleLights() const {
+    return hasNonTriangleLights_;
+  }  // world space, of the last update
   const glm::vec3& boundsCenter() const { return center_; }
   float boundsRadius() const { return radius_; }
   const std::vector<shared::GpuLight>& lights() const { return lights_; }
@@ -64,8 +66,10 @@ class GpuScene {
   bool hasNonTriangleLights_ = false;
 
   std::unique_ptr<gpu::Buffer> vertices_, triangleBuffer_, materials_, textures_, texels_;
-  std::unique_ptr<gpu::BufferView> texelView_, verticesView_, materialsView_, triangleView_, lightCdfView_;
-  std::unique_ptr<gpu::Buffer> bvhNodes_, bvhTris_, bvhInstances_, instances_, lightBuffer_, lightCdf_;
+  std::unique_ptr<gpu::BufferView> texelView_, verticesView_, materialsView_, triangleView_,
+      lightCdfView_;
+  std::unique_ptr<gpu::Buffer> bvhNodes_, bvhTris_, bvhInstances_, instances_, lightBuffer_,
+      lightCdf_;
   std::unique_ptr<gpu::BufferView> bvhNodesView_, bvhTrisView_, bvhInstancesView_;
 };
 

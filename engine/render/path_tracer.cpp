@@ -91,7 +91,8 @@ void PathTracer::setTemporalBlend(float k) {
 }
 
 void PathTracer::fadeAccumulation(float factor) {
-  if (!(factor >= 0.0f && factor <= 1.0f)) throw std::invalid_argument("fade factor must be in [0, 1]");
+  if (!(factor >= 0.0f && factor <= 1.0f))
+    throw std::invalid_argument("fade factor must be in [0, 1]");
   if (factor == 0.0f) return resetAccumulation();
   pendingFade_ *= factor;
   accumulated_ = uint32_t(float(accumulated_) * factor);
@@ -133,9 +134,15 @@ void PathTracer::recordFrame(gpu::PassRecorder& rec, const GpuScene& scene,
   u.maxDepth = settings_.maxDepth;
   u.flags = settings_.russianRoulette ? shared::kFlagRussianRoulette : 0u;
   switch (settings_.estimator) {
-    case Estimator::Mis: u.flags |= shared::kFlagNee | shared::kFlagEmitterHits | shared::kFlagMis; break;
-    case Estimator::BsdfOnly: u.flags |= shared::kFlagEmitterHits; break;
-    case Estimator::NeeOnly: u.flags |= shared::kFlagNee; break;
+    case Estimator::Mis:
+      u.flags |= shared::kFlagNee | shared::kFlagEmitterHits | shared::kFlagMis;
+      break;
+    case Estimator::BsdfOnly:
+      u.flags |= shared::kFlagEmitterHits;
+      break;
+    case Estimator::NeeOnly:
+      u.flags |= shared::kFlagNee;
+      break;
   }
   u.lightCount = scene.lightCount();
   u.samplesPerFrame = settings_.samplesPerFrame;
@@ -172,12 +179,16 @@ void PathTracer::recordFrame(gpu::PassRecorder& rec, const GpuScene& scene,
   // Wavefront: begin, then per bounce trace (shadow + extension rays) and
   // shade over the live paths only, a last trace for the final shadow rays, end.
   for (uint32_t s = 0; s < settings_.samplesPerFrame; ++s) {
-    pass("path.begin", begin_, s, 0, 0).write(QL_BIND_QUEUE_OUT, *queueIds_[0]).dispatchThreads(pathCount);
+    pass("path.begin", begin_, s, 0, 0)
+        .write(QL_BIND_QUEUE_OUT, *queueIds_[0])
+        .dispatchThreads(pathCount);
     switchQueues(s, 0, true);
     for (uint32_t bounce = 0; bounce <= settings_.maxDepth; ++bounce) {
       if (bounce > 0) switchQueues(s, bounce, false);
       queued(pass("path.trace", trace_, s, bounce, 1), bounce);
-      queued(pass("path.shade", shade, s, bounce, 0).write(QL_BIND_QUEUE_OUT, *queueIds_[(bounce + 1) & 1]), bounce);
+      queued(pass("path.shade", shade, s, bounce, 0)
+                 .write(QL_BIND_QUEUE_OUT, *queueIds_[(bounce + 1) & 1]),
+             bounce);
     }
     uint32_t last = settings_.maxDepth + 1;
     switchQueues(s, last, false);

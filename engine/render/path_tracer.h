@@ -12,8 +12,8 @@
 #include "engine/gpu/compute_pipeline.h"
 #include "engine/gpu/gpu_timer.h"
 #include "engine/gpu/image.h"
-#include "engine/render/gpu_scene.h"
 #include "engine/image/image_io.h"
+#include "engine/render/gpu_scene.h"
 #include "engine/render/guide.h"
 #include "engine/render/render_settings.h"
 

@@ -7,9 +7,9 @@
 namespace qlight::render {
 
 enum class Estimator : uint32_t {
-  Mis,          // NEE and BSDF sampling, combined by the power heuristic (default)
-  BsdfOnly,     // no NEE: light is found only by scattered rays
-  NeeOnly,      // only NEE (and emitters seen directly by the camera)
+  Mis,       // NEE and BSDF sampling, combined by the power heuristic (default)
+  BsdfOnly,  // no NEE: light is found only by scattered rays
+  NeeOnly,   // only NEE (and emitters seen directly by the camera)
 };
 
 struct RenderSettings {

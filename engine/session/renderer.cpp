@@ -67,8 +67,10 @@ void Renderer::uploadScene() {
   // temporal blending), while the learned distributions persist and follow the lights.
   scene_.update(world_.draw());
   float blend = tracer_.settings().temporalBlend;
-  if (blend > 0.0f) tracer_.fadeAccumulation(blend);
-  else tracer_.resetAccumulation();
+  if (blend > 0.0f)
+    tracer_.fadeAccumulation(blend);
+  else
+    tracer_.resetAccumulation();
 }
 
 const render::Guide& Renderer::activeGuide() const {
@@ -114,7 +116,8 @@ void Renderer::setGuiding(const guiding::GuidingSettings& settings, bool regener
     auto start = std::chrono::steady_clock::now();
     qGuide_ = std::make_unique<guiding::QGuide>(ctx_, settings);
     qGuide_->generatePoints(world_.registry(), scene_);
-    pointGenerationSeconds_ = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+    pointGenerationSeconds_ =
+        std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
     return;
   }
   qGuide_->setSettings(settings);

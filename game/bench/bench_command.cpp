@@ -1,12 +1,12 @@
 #include "game/bench/bench_command.h"
 
 #include <chrono>
-#include <cstdio>
 #include <cmath>
+#include <cstdio>
 #include <ctime>
-#include <optional>
 #include <filesystem>
 #include <fstream>
+#include <optional>
 
 #include "engine/gltf/gltf_loader.h"
 #include "engine/session/stats_json.h"
@@ -24,7 +24,7 @@ struct BenchArgs {
   bool quick = false;
   std::vector<std::string> scenes;  // empty: every shipped scene
   std::string out = "out/bench";
-  std::string cache;  // empty: $XDG_CACHE_HOME/qlight or ~/.cache/qlight
+  std::string cache;                    // empty: $XDG_CACHE_HOME/qlight or ~/.cache/qlight
   std::optional<double> budgetSeconds;  // per method and scene; default: the mode's
   uint32_t referenceSpp = 0;
   uint32_t width = 0, height = 0;
@@ -43,8 +43,10 @@ void applyModeDefaults(BenchArgs& a) {
 
 fs::path cacheDirectory(const BenchArgs& a) {
   if (!a.cache.empty()) return a.cache;
-  if (const char* xdg = std::getenv("XDG_CACHE_HOME"); xdg && *xdg) return fs::path(xdg) / "qlight" / "references";
-  if (const char* home = std::getenv("HOME"); home && *home) return fs::path(home) / ".cache" / "qlight" / "references";
+  if (const char* xdg = std::getenv("XDG_CACHE_HOME"); xdg && *xdg)
+    return fs::path(xdg) / "qlight" / "references";
+  if (const char* home = std::getenv("HOME"); home && *home)
+    return fs::path(home) / ".cache" / "qlight" / "references";
   return fs::path(a.out) / "reference-cache";
 }
 
@@ -58,7 +60,8 @@ void validate(const BenchArgs& a, const std::vector<std::string>& scenes) {
   std::error_code ec;
   fs::create_directories(a.out, ec);
   std::ofstream probe(fs::path(a.out) / ".write-test");
-  if (ec || !probe) throw std::invalid_argument("bench: cannot write to the output folder " + a.out);
+  if (ec || !probe)
+    throw std::invalid_argument("bench: cannot write to the output folder " + a.out);
   probe.close();
   fs::remove(fs::path(a.out) / ".write-test");
 }
@@ -101,7 +104,8 @@ int runBench(BenchArgs a, const CommonOptions& common) {
     const double base = perScene * double(i);
     sb.reference = loadOrRenderReference(*ctx, asset, scenes[i], settings, a.referenceSpp,
                                          cacheDirectory(a), progress, base, name);
-    sb.methods = runMethods(*ctx, asset, methods, run, sb.reference.image, progress, base + 1.0, name);
+    sb.methods =
+        runMethods(*ctx, asset, methods, run, sb.reference.image, progress, base + 1.0, name);
     sb.lights = sb.methods.front().sceneLights;
     sceneEntries.push_back(sceneJson(sb, a.out));
   }
@@ -126,7 +130,9 @@ int runBench(BenchArgs a, const CommonOptions& common) {
     std::printf("  %-16s", s["name"].get<std::string>().c_str());
     for (const auto& [method, ratio] : s["headline"]["time_to_unguided_error"].items())
       std::printf("  %s: time to unguided's error %s", method.c_str(),
-                  ratio.is_null() ? "n/a" : (std::to_string(ratio.get<double>()).substr(0, 5) + "x").c_str());
+                  ratio.is_null()
+                      ? "n/a"
+                      : (std::to_string(ratio.get<double>()).substr(0, 5) + "x").c_str());
     std::printf("\n");
   }
   return finishContext(*ctx);
@@ -136,17 +142,27 @@ int runBench(BenchArgs a, const CommonOptions& common) {
 
 std::function<int()> addBenchCommand(CLI::App& app, const CommonOptions& common) {
   auto args = std::make_shared<BenchArgs>();
-  CLI::App* cmd = app.add_subcommand("bench", "guided vs unguided at equal time and equal samples, with plots");
+  CLI::App* cmd =
+      app.add_subcommand("bench", "guided vs unguided at equal time and equal samples, with plots");
   cmd->add_flag("--quick", args->quick, "about a minute on lavapipe (small images, short budgets)");
-  cmd->add_option("--scene", args->scenes, "glTF scene or shipped name (repeat; default: every shipped scene)");
-  cmd->add_option("--out", args->out, "output folder (bench.json, report.md, plots/, images/)")->capture_default_str();
-  cmd->add_option("--budget", args->budgetSeconds, "render seconds per method and scene (quick 2.5, full 40)");
-  cmd->add_option("--reference-spp", args->referenceSpp, "reference samples per pixel (quick 256, full 2048)");
-  cmd->add_option("--width", args->width, "image width (quick 96, full 256)")->check(CLI::Range(1, 16384));
-  cmd->add_option("--height", args->height, "image height (quick 54, full 144)")->check(CLI::Range(1, 16384));
-  cmd->add_option("--spp-per-frame", args->sppPerFrame, "samples per pixel per frame (learning runs between frames)")
-      ->check(CLI::Range(1, 4096))->capture_default_str();
-  cmd->add_option("--cache", args->cache, "reference cache folder (default ~/.cache/qlight/references)");
+  cmd->add_option("--scene", args->scenes,
+                  "glTF scene or shipped name (repeat; default: every shipped scene)");
+  cmd->add_option("--out", args->out, "output folder (bench.json, report.md, plots/, images/)")
+      ->capture_default_str();
+  cmd->add_option("--budget", args->budgetSeconds,
+                  "render seconds per method and scene (quick 2.5, full 40)");
+  cmd->add_option("--reference-spp", args->referenceSpp,
+                  "reference samples per pixel (quick 256, full 2048)");
+  cmd->add_option("--width", args->width, "image width (quick 96, full 256)")
+      ->check(CLI::Range(1, 16384));
+  cmd->add_option("--height", args->height, "image height (quick 54, full 144)")
+      ->check(CLI::Range(1, 16384));
+  cmd->add_option("--spp-per-frame", args->sppPerFrame,
+                  "samples per pixel per frame (learning runs between frames)")
+      ->check(CLI::Range(1, 4096))
+      ->capture_default_str();
+  cmd->add_option("--cache", args->cache,
+                  "reference cache folder (default ~/.cache/qlight/references)");
   cmd->add_flag("!--no-report", args->report, "skip tools/bench_report.py (JSON and images only)");
   return [cmd, args, &common]() -> int {
     if (!cmd->parsed()) return -1;

@@ -18,7 +18,8 @@ struct MethodState {
 
 void measure(MethodState& m, const image::LinearImage& reference) {
   m.result.finalImage = m.renderer->tracer().readImage();
-  m.result.checkpoints.push_back({m.result.spp, m.result.seconds, relativeMse(m.result.finalImage, reference)});
+  m.result.checkpoints.push_back(
+      {m.result.spp, m.result.seconds, relativeMse(m.result.finalImage, reference)});
 }
 
 }  // namespace
@@ -45,7 +46,8 @@ std::vector<MethodResult> runMethods(const gpu::Context& ctx, const scene::Scene
     states[i].result.spec = methods[i];
     // Point generation happens before the first frame and is not counted: it is a
     // one-off cost of a scene, reported apart (point_generation_seconds in render stats).
-    states[i].renderer = std::make_unique<session::Renderer>(ctx, asset, settings.render, methods[i].guiding);
+    states[i].renderer =
+        std::make_unique<session::Renderer>(ctx, asset, settings.render, methods[i].guiding);
     states[i].nextCheckpoint = settings.render.samplesPerFrame;
   }
   const double budget = settings.budgetSeconds;
@@ -55,7 +57,8 @@ std::vector<MethodResult> runMethods(const gpu::Context& ctx, const scene::Scene
       MethodResult& r = m.result;
       if (r.seconds >= budget) continue;
       running = true;
-      if (r.spec.freezeAfterShare > 0 && !m.frozen && r.seconds >= r.spec.freezeAfterShare * budget) {
+      if (r.spec.freezeAfterShare > 0 && !m.frozen &&
+          r.seconds >= r.spec.freezeAfterShare * budget) {
         guiding::GuidingSettings frozen = r.spec.guiding;
         frozen.learn = false;
         m.renderer->setGuiding(frozen);
@@ -84,7 +87,8 @@ std::vector<MethodResult> runMethods(const gpu::Context& ctx, const scene::Scene
   std::vector<MethodResult> results;
   for (MethodState& m : states) {
     m.result.sceneLights = m.renderer->scene().lightCount();
-    if (const guiding::QGuide* guide = m.renderer->guide(); guide && m.result.spec.guiding.enabled) {
+    if (const guiding::QGuide* guide = m.renderer->guide();
+        guide && m.result.spec.guiding.enabled) {
       m.result.guideMemoryBytes = guide->memoryBytes();
       m.result.points = guide->stats().points;
     }

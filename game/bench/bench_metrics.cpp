@@ -16,7 +16,8 @@ double logLogInterpolate(double x0, double y0, double x1, double y1, double x) {
 }  // namespace
 
 double relativeMse(const image::LinearImage& x, const image::LinearImage& reference) {
-  if (x.width != reference.width || x.height != reference.height || x.rgba.size() != reference.rgba.size())
+  if (x.width != reference.width || x.height != reference.height ||
+      x.rgba.size() != reference.rgba.size())
     throw std::invalid_argument("relative MSE of images of different sizes");
   double sum = 0;
   size_t n = 0;
@@ -38,7 +39,8 @@ std::optional<TimeToError> timeToReach(const std::vector<Checkpoint>& run, doubl
     // relMSE falls between a and b: the time on the log-log line where it equals target.
     if (a.relMse <= 0 || b.relMse <= 0 || a.seconds <= 0) return TimeToError{b.seconds, false};
     double t = (std::log(target) - std::log(a.relMse)) / (std::log(b.relMse) - std::log(a.relMse));
-    return TimeToError{std::exp(std::log(a.seconds) + t * (std::log(b.seconds) - std::log(a.seconds))), false};
+    return TimeToError{
+        std::exp(std::log(a.seconds) + t * (std::log(b.seconds) - std::log(a.seconds))), false};
   }
   const Checkpoint& last = run.back();
   return TimeToError{last.seconds * last.relMse / target, true};
@@ -47,8 +49,8 @@ std::optional<TimeToError> timeToReach(const std::vector<Checkpoint>& run, doubl
 std::optional<double> relMseAtSpp(const std::vector<Checkpoint>& run, uint32_t spp) {
   for (size_t i = 0; i < run.size(); ++i) {
     if (run[i].spp < spp) continue;
-    if (run[i].spp == spp || i == 0) return i == 0 && run[i].spp != spp ? std::nullopt
-                                                                          : std::optional(run[i].relMse);
+    if (run[i].spp == spp || i == 0)
+      return i == 0 && run[i].spp != spp ? std::nullopt : std::optional(run[i].relMse);
     return logLogInterpolate(run[i - 1].spp, run[i - 1].relMse, run[i].spp, run[i].relMse, spp);
   }
   return std::nullopt;

@@ -29,7 +29,9 @@ struct Fnv1a {
     for (size_t i = 0; i < n; ++i) h = (h ^ p[i]) * 1099511628211ull;
   }
   template <class T>
-  void add(const T& v) { add(&v, sizeof(v)); }
+  void add(const T& v) {
+    add(&v, sizeof(v));
+  }
   std::string hex() const {
     char s[17];
     std::snprintf(s, sizeof(s), "%016llx", static_cast<unsigned long long>(h));
@@ -37,7 +39,8 @@ struct Fnv1a {
   }
 };
 
-std::string cacheKey(const std::filesystem::path& sceneFile, const render::RenderSettings& s, uint32_t spp) {
+std::string cacheKey(const std::filesystem::path& sceneFile, const render::RenderSettings& s,
+                     uint32_t spp) {
   Fnv1a f;
   std::ifstream in(sceneFile, std::ios::binary);
   std::string bytes((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
@@ -107,8 +110,12 @@ Reference loadOrRenderReference(const gpu::Context& ctx, const scene::SceneAsset
   ref.noiseRelMse = relativeMse(halves[0], halves[1]) / 4.0;
   std::filesystem::create_directories(cacheDir);
   image::writeImage(imagePath, ref.image);
-  std::ofstream(infoPath) << nlohmann::json{{"seconds", ref.seconds}, {"noise_relmse", ref.noiseRelMse},
-                                            {"spp", spp}, {"scene", sceneFile.string()}}.dump(2);
+  std::ofstream(infoPath) << nlohmann::json{
+      {"seconds", ref.seconds},
+      {"noise_relmse", ref.noiseRelMse},
+      {"spp", spp},
+      {"scene",
+       sceneFile.string()}}.dump(2);
   return ref;
 }
 

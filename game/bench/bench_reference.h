@@ -16,9 +16,9 @@ namespace qlight::game::bench {
 struct Reference {
   image::LinearImage image;
   uint32_t spp = 0;
-  double seconds = 0;       // render time (0 when cached and not recorded)
+  double seconds = 0;  // render time (0 when cached and not recorded)
   bool cached = false;
-  double noiseRelMse = 0;   // relMSE of the reference itself: relMSE(half A, half B) / 4
+  double noiseRelMse = 0;  // relMSE of the reference itself: relMSE(half A, half B) / 4
 };
 
 // The renderer's version for cache keys: a hash of the path tracing shaders' SPIR-V and

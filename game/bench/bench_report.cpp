@@ -17,23 +17,31 @@ double msPerSample(const MethodResult& m) { return m.spp ? 1e3 * m.seconds / m.s
 nlohmann::json methodJson(const MethodResult& m, uint32_t equalSpp, const std::string& pfm) {
   nlohmann::json checkpoints = nlohmann::json::array();
   for (const Checkpoint& c : m.checkpoints)
-    checkpoints.push_back({{"spp", c.spp}, {"seconds", number(c.seconds)}, {"relmse", number(c.relMse)}});
+    checkpoints.push_back(
+        {{"spp", c.spp}, {"seconds", number(c.seconds)}, {"relmse", number(c.relMse)}});
   nlohmann::json gpu = nlohmann::json::object();
   for (auto& [name, ms] : m.gpuMsTotal) gpu[name] = number(ms / std::max(1u, m.frames));
   std::optional<double> atEqual = relMseAtSpp(m.checkpoints, equalSpp);
   double finalRelMse = m.checkpoints.empty() ? NAN : m.checkpoints.back().relMse;
-  return {{"name", m.spec.name},
-          {"label", m.spec.label},
-          {"checkpoints", checkpoints},
-          {"frames", {{"seconds", m.frameSeconds}, {"emitter_hit_share", m.emitterHitShare},
-                      {"mean_path_length", m.meanPathLength}}},
-          {"gpu_ms_per_frame", gpu},
-          {"final", {{"spp", m.spp}, {"seconds", number(m.seconds)}, {"relmse", number(finalRelMse)},
-                     {"rays_per_second", number(m.seconds > 0 ? double(m.rays) / m.seconds : NAN)},
-                     {"ms_per_spp", number(msPerSample(m))}, {"pfm", pfm}}},
-          {"equal_spp", {{"spp", equalSpp}, {"relmse", atEqual ? number(*atEqual) : nlohmann::json()}}},
-          {"guide_memory_bytes", m.guideMemoryBytes},
-          {"points", m.points}};
+  return {
+      {"name", m.spec.name},
+      {"label", m.spec.label},
+      {"checkpoints", checkpoints},
+      {"frames",
+       {{"seconds", m.frameSeconds},
+        {"emitter_hit_share", m.emitterHitShare},
+        {"mean_path_length", m.meanPathLength}}},
+      {"gpu_ms_per_frame", gpu},
+      {"final",
+       {{"spp", m.spp},
+        {"seconds", number(m.seconds)},
+        {"relmse", number(finalRelMse)},
+        {"rays_per_second", number(m.seconds > 0 ? double(m.rays) / m.seconds : NAN)},
+        {"ms_per_spp", number(msPerSample(m))},
+        {"pfm", pfm}}},
+      {"equal_spp", {{"spp", equalSpp}, {"relmse", atEqual ? number(*atEqual) : nlohmann::json()}}},
+      {"guide_memory_bytes", m.guideMemoryBytes},
+      {"points", m.points}};
 }
 
 }  // namespace
@@ -61,24 +69,30 @@ nlohmann::json sceneJson(const SceneBench& s, const fs::path& outDir) {
   for (size_t i = 1; i < s.methods.size(); ++i) {
     const MethodResult& m = s.methods[i];
     std::optional<TimeToError> t = timeToReach(m.checkpoints, baseError);
-    timeTo[m.spec.name] = t && base.seconds > 0 ? number(t->seconds / base.seconds) : nlohmann::json();
+    timeTo[m.spec.name] =
+        t && base.seconds > 0 ? number(t->seconds / base.seconds) : nlohmann::json();
     extrapolated[m.spec.name] = t ? t->extrapolated : true;
     std::optional<double> atEqual = relMseAtSpp(m.checkpoints, equalSpp);
-    equal[m.spec.name] = atEqual && baseAtEqual ? number(*atEqual / *baseAtEqual) : nlohmann::json();
+    equal[m.spec.name] =
+        atEqual && baseAtEqual ? number(*atEqual / *baseAtEqual) : nlohmann::json();
     perSample[m.spec.name] = number(msPerSample(m) / msPerSample(base));
   }
   return {{"name", s.name},
           {"file", s.file.string()},
           {"triangles", s.triangles},
           {"lights", s.lights},
-          {"reference", {{"pfm", (imageDir / "reference.pfm").string()}, {"spp", s.reference.spp},
-                         {"seconds", number(s.reference.seconds)}, {"cached", s.reference.cached},
-                         {"noise_relmse", number(s.reference.noiseRelMse)}}},
+          {"reference",
+           {{"pfm", (imageDir / "reference.pfm").string()},
+            {"spp", s.reference.spp},
+            {"seconds", number(s.reference.seconds)},
+            {"cached", s.reference.cached},
+            {"noise_relmse", number(s.reference.noiseRelMse)}}},
           {"methods", methods},
-          {"headline", {{"time_to_unguided_error", timeTo},
-                        {"time_to_unguided_error_extrapolated", extrapolated},
-                        {"equal_spp_relmse_ratio", equal},
-                        {"time_per_sample_ratio", perSample}}}};
+          {"headline",
+           {{"time_to_unguided_error", timeTo},
+            {"time_to_unguided_error_extrapolated", extrapolated},
+            {"equal_spp_relmse_ratio", equal},
+            {"time_per_sample_ratio", perSample}}}};
 }
 
 void writeReport(const fs::path& outDir) {

@@ -7,7 +7,8 @@
 
 namespace qlight::game::bench {
 
-ProgressBar::ProgressBar(double total) : total_(std::max(total, 1e-9)), terminal_(isatty(STDERR_FILENO)) {}
+ProgressBar::ProgressBar(double total)
+    : total_(std::max(total, 1e-9)), terminal_(isatty(STDERR_FILENO)) {}
 
 ProgressBar::~ProgressBar() { finish(); }
 

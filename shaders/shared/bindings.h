@@ -24,10 +24,10 @@
 #define QL_BIND_LIGHT_CDF 10
 
 // --- frame and paths: bound by the path tracer itself ---
-#define QL_BIND_FRAME 11        // FrameUniforms
-#define QL_BIND_ACCUM 12        // accumulation image (pt_end)
-#define QL_BIND_STATS 13        // kStat* counters (pt_end)
-#define QL_BIND_PATH_STATE 14   // kPathStateTexels texels per path (scene_types.h)
+#define QL_BIND_FRAME 11       // FrameUniforms
+#define QL_BIND_ACCUM 12       // accumulation image (pt_end)
+#define QL_BIND_STATS 13       // kStat* counters (pt_end)
+#define QL_BIND_PATH_STATE 14  // kPathStateTexels texels per path (scene_types.h)
 // Work queues of path ids: trace and shade visit the current one, shade (and
 // begin) fill the next; QL_BIND_QUEUE_STATE holds both counts (QueueState[2]).
 #define QL_BIND_QUEUE_IN 15
@@ -38,15 +38,15 @@
 // The path passes declare them always, so a frame without guiding binds the
 // null guide's placeholders (specialization removes the code that reads them).
 // In C++ only engine/guiding/guide_bindings.cpp binds them.
-#define QL_BIND_GUIDING 18        // GuidingUniforms
+#define QL_BIND_GUIDING 18  // GuidingUniforms
 #define QL_BIND_CACHE_POINTS 19
 #define QL_BIND_GRID_BUCKETS 20
 #define QL_BIND_GRID_POINTS 21
 #define QL_BIND_Q_CDF 22
-#define QL_BIND_Q_SUM 23          // Q-learning targets, fixed point (lo, hi) pairs
+#define QL_BIND_Q_SUM 23  // Q-learning targets, fixed point (lo, hi) pairs
 #define QL_BIND_Q_COUNT 24
-#define QL_BIND_SPAWN 25          // uncovered camera hits, candidates for new points
-#define QL_BIND_V_CDF 26          // learned light selection V(point, light)
+#define QL_BIND_SPAWN 25  // uncovered camera hits, candidates for new points
+#define QL_BIND_V_CDF 26  // learned light selection V(point, light)
 #define QL_BIND_V_SUM 27
 #define QL_BIND_V_COUNT 28
 #define QL_BIND_POINT_UPDATES 29  // Q updates each point has received

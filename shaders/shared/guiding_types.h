@@ -15,7 +15,7 @@ struct GpuCachePoint {
   vec3 position;
   float radius;  // rejection distance it was accepted with
   vec3 normal;
-  uint pad;      // CachePoint keeps its slot here (unread by the shaders)
+  uint pad;  // CachePoint keeps its slot here (unread by the shaders)
 };
 QL_CHECK_SIZE(GpuCachePoint, 32);
 
@@ -26,19 +26,19 @@ QL_CONST uint kGuideLightLearn = 4u;  // learn light selection V(point, light) a
 QL_CONST uint kGuideSpawn = 8u;       // report camera hits with no cache point nearby
 
 struct GuidingUniforms {
-  uint rows;              // strata rows (equal-height zones in cos theta)
-  uint cols;              // strata columns (phi segments)
+  uint rows;  // strata rows (equal-height zones in cos theta)
+  uint cols;  // strata columns (phi segments)
   uint pointCount;
   uint flags;
-  float searchRadius;     // nearest-point search radius
-  float cellSize;         // hashed grid cell (>= 2 searchRadius, so 2x2x2 cells cover it)
-  uint hashSize;          // buckets (power of two)
+  float searchRadius;       // nearest-point search radius
+  float cellSize;           // hashed grid cell (>= 2 searchRadius, so 2x2x2 cells cover it)
+  uint hashSize;            // buckets (power of two)
   float selectProbability;  // chance of a guided sample (scaled by the diffuse share)
-  float normalCosine;     // a point is compatible when dot(normals) >= this
-  float qFloor;           // every Q stays above this, so every direction stays possible
-  float lightMix;         // share of the learned light choice (the rest by power)
-  uint lightCount;        // lights with learned values (0: light learning off)
-  uint spawnCapacity;     // slots in the spawn buffer (fixed slot per pixel group)
+  float normalCosine;       // a point is compatible when dot(normals) >= this
+  float qFloor;             // every Q stays above this, so every direction stays possible
+  float lightMix;           // share of the learned light choice (the rest by power)
+  uint lightCount;          // lights with learned values (0: light learning off)
+  uint spawnCapacity;       // slots in the spawn buffer (fixed slot per pixel group)
   float alphaMin;
   float alphaMax;
   // Updates per stratum a point needs before it guides at the full share: a
@@ -96,8 +96,8 @@ QL_CHECK_SIZE(DartsPush, 48);
 // Targets are summed as 64-bit fixed point (two uint words, 20 fraction bits):
 // integer addition does not depend on the order the GPU's atomics run in, so
 // learning, and therefore rendering, is the same for the same seed.
-QL_CONST float kTargetScale = 1048576.0f;      // 2^20
-QL_CONST float kTargetMax = 1.0e9f;            // larger targets are clamped
+QL_CONST float kTargetScale = 1048576.0f;  // 2^20
+QL_CONST float kTargetMax = 1.0e9f;        // larger targets are clamped
 QL_CONST float kTwoPow32 = 4294967296.0f;
 
 QL_FN float fixedSumToFloat(uint lo, uint hi) {
@@ -137,8 +137,8 @@ QL_FN float retainedAfterUpdates(uint n0, uint m, float alphaMin, float alphaMax
 
 // One entry's update from a frame's m targets summing to targetSum. A
 // non-finite result keeps the old value: NaN or Inf never enters a table.
-QL_FN float updatedQ(float q, float targetSum, uint m, uint visits, float alphaMin,
-                     float alphaMax, float qFloor) {
+QL_FN float updatedQ(float q, float targetSum, uint m, uint visits, float alphaMin, float alphaMax,
+                     float qFloor) {
   if (m == 0u) return max(q, qFloor);
   float keep = retainedAfterUpdates(visits, m, alphaMin, alphaMax);
   float mean = targetSum / float(m);

@@ -17,7 +17,7 @@ QL_BEGIN
 struct GpuTriangle {
   uint v0, v1, v2;  // indices into the vertex array (already offset per mesh)
   uint material;
-  uint light;       // index into the light list when emissive, else kNoLight
+  uint light;  // index into the light list when emissive, else kNoLight
   uint pad0, pad1, pad2;
 };
 QL_CHECK_SIZE(GpuTriangle, 32);
@@ -80,7 +80,8 @@ QL_CONST uint kLightSpot = 2u;
 QL_CONST uint kLightDirectional = 3u;
 QL_CONST uint kLightSky = 4u;  // uniform environment, the fallback for scenes without emitters
 QL_CONST uint kLightDoubleSided = 1u;
-QL_CONST uint kLightMirrored = 2u;  // triangle under a mirroring transform: front normal is -(e1 x e2)
+QL_CONST uint kLightMirrored =
+    2u;  // triangle under a mirroring transform: front normal is -(e1 x e2)
 
 struct GpuLight {
   vec3 position;  // triangle: world vertex 0; point/spot: position
@@ -89,12 +90,13 @@ struct GpuLight {
   uint triangle;  // triangle: its GpuTriangle index (for emissive textures)
   vec3 edge2;     // triangle: v2 - v0
   float area;     // triangle: world area
-  vec3 emission;  // triangle: radiance; point/spot: intensity (W/sr); directional: irradiance; sky: radiance
+  vec3 emission;  // triangle: radiance; point/spot: intensity (W/sr); directional: irradiance; sky:
+                  // radiance
   float cosInner;
   float cosOuter;
-  float range;    // 0: infinite
-  uint flags;     // kLightDoubleSided
-  float power;    // selection weight (proportional to emitted power)
+  float range;  // 0: infinite
+  uint flags;   // kLightDoubleSided
+  float power;  // selection weight (proportional to emitted power)
 };
 QL_CHECK_SIZE(GpuLight, 80);
 
@@ -111,9 +113,9 @@ struct GpuCamera {
 QL_CHECK_SIZE(GpuCamera, 64);
 
 // Estimator switches (FrameUniforms.flags).
-QL_CONST uint kFlagNee = 1u;            // next event estimation on
-QL_CONST uint kFlagEmitterHits = 2u;    // BSDF-sampled rays that hit emitters count
-QL_CONST uint kFlagMis = 4u;            // weight both by the power heuristic (needs both)
+QL_CONST uint kFlagNee = 1u;          // next event estimation on
+QL_CONST uint kFlagEmitterHits = 2u;  // BSDF-sampled rays that hit emitters count
+QL_CONST uint kFlagMis = 4u;          // weight both by the power heuristic (needs both)
 QL_CONST uint kFlagRussianRoulette = 8u;
 
 struct FrameUniforms {
@@ -121,7 +123,7 @@ struct FrameUniforms {
   uvec2 resolution;
   uint frameIndex;  // samples accumulated before this frame (seeds the RNG)
   uint seed;
-  uint maxDepth;    // bounces: 0 shows emitters only, 1 adds direct light
+  uint maxDepth;  // bounces: 0 shows emitters only, 1 adds direct light
   uint flags;
   uint lightCount;
   uint samplesPerFrame;
@@ -131,13 +133,15 @@ struct FrameUniforms {
 QL_CHECK_SIZE(FrameUniforms, 112);
 
 // Counters the path tracer accumulates per frame (read back once per frame).
-QL_CONST uint kStatRays = 0u;           // every ray traced, shadow rays included
+QL_CONST uint kStatRays = 0u;  // every ray traced, shadow rays included
 QL_CONST uint kStatShadowRays = 1u;
 QL_CONST uint kStatPaths = 2u;
-QL_CONST uint kStatEmitterHits = 3u;    // paths whose scattered (not shadow) ray reached an emitter
-QL_CONST uint kStatPathVertices = 4u;   // sum of path lengths: scattering vertices until the path ends or first reaches an emitter by a scattered ray (D&K's measure)
-QL_CONST uint kStatInvalidSamples = 5u; // NaN/Inf samples dropped (should stay 0)
-QL_CONST uint kStatCoveredVertices = 6u; // scattering vertices that found a cache point
+QL_CONST uint kStatEmitterHits = 3u;  // paths whose scattered (not shadow) ray reached an emitter
+QL_CONST uint kStatPathVertices =
+    4u;  // sum of path lengths: scattering vertices until the path ends or first reaches an emitter
+         // by a scattered ray (D&K's measure)
+QL_CONST uint kStatInvalidSamples = 5u;   // NaN/Inf samples dropped (should stay 0)
+QL_CONST uint kStatCoveredVertices = 6u;  // scattering vertices that found a cache point
 QL_CONST uint kStatCount = 8u;
 
 // The path tracer runs as a wavefront: begin (camera rays), then per bounce

@@ -14,13 +14,17 @@ namespace {
 namespace fs = std::filesystem;
 
 // Paths of every number that is not finite (JSON null where a number belongs).
-void collectMissing(const nlohmann::json& j, const std::string& path, std::vector<std::string>& missing) {
-  if (j.is_null()) missing.push_back(path);
-  else if (j.is_number_float() && !std::isfinite(j.get<double>())) missing.push_back(path);
+void collectMissing(const nlohmann::json& j, const std::string& path,
+                    std::vector<std::string>& missing) {
+  if (j.is_null())
+    missing.push_back(path);
+  else if (j.is_number_float() && !std::isfinite(j.get<double>()))
+    missing.push_back(path);
   else if (j.is_object())
     for (auto& [key, value] : j.items()) collectMissing(value, path + "/" + key, missing);
   else if (j.is_array())
-    for (size_t i = 0; i < j.size(); ++i) collectMissing(j[i], path + "/" + std::to_string(i), missing);
+    for (size_t i = 0; i < j.size(); ++i)
+      collectMissing(j[i], path + "/" + std::to_string(i), missing);
 }
 
 TEST(BenchCli, QuickModeWritesReportJsonAndPlotsWithFiniteFigures) {
@@ -44,8 +48,9 @@ TEST(BenchCli, QuickModeWritesReportJsonAndPlotsWithFiniteFigures) {
   EXPECT_EQ(j["scenes"][0]["methods"].size(), 4u);
 
   // A second run finds the reference in the cache.
-  auto again = runQlight("bench --quick --scene cornell_box --budget 0.2 --reference-spp 16 --no-report --out " +
-                         (dir / "out2").string() + " --cache " + (dir / "cache").string());
+  auto again = runQlight(
+      "bench --quick --scene cornell_box --budget 0.2 --reference-spp 16 --no-report --out " +
+      (dir / "out2").string() + " --cache " + (dir / "cache").string());
   ASSERT_EQ(again.exitCode, 0) << again.output;
   nlohmann::json k = nlohmann::json::parse(std::ifstream(dir / "out2" / "bench.json"));
   EXPECT_TRUE(k["scenes"][0]["reference"]["cached"].get<bool>());
@@ -54,8 +59,8 @@ TEST(BenchCli, QuickModeWritesReportJsonAndPlotsWithFiniteFigures) {
 TEST(BenchCli, BadInputIsAOneLineError) {
   fs::path dir = tempDir("bench_bad");
   const std::string out = " --out " + (dir / "o").string();
-  for (std::string bad : {"--scene /nonexistent/scene.gltf" + out, "--budget 0" + out, "--budget -2" + out,
-                          std::string("--out /proc/qlight_cannot_write")}) {
+  for (std::string bad : {"--scene /nonexistent/scene.gltf" + out, "--budget 0" + out,
+                          "--budget -2" + out, std::string("--out /proc/qlight_cannot_write")}) {
     auto r = runQlight("bench --quick --scene cornell_box " + bad);
     EXPECT_NE(r.exitCode, 0) << bad << "\n" << r.output;
     EXPECT_NE(r.output.find("qlight: error: bench:"), std::string::npos) << bad << "\n" << r.output;

@@ -21,8 +21,9 @@ std::string slurp(const fs::path& p) {
 
 TEST(RenderCli, WritesImageAndStatsWithEveryField) {
   fs::path dir = tempDir("stats");
-  auto r = runQlight("render --scene " + asset("cornell_box.gltf") + " --width 48 --height 32 --spp 4 --out " +
-                     (dir / "cb.png").string() + " --stats-json " + (dir / "s.json").string());
+  auto r = runQlight("render --scene " + asset("cornell_box.gltf") +
+                     " --width 48 --height 32 --spp 4 --out " + (dir / "cb.png").string() +
+                     " --stats-json " + (dir / "s.json").string());
   ASSERT_EQ(r.exitCode, 0) << r.output;
   ASSERT_TRUE(fs::exists(dir / "cb.png"));
   auto j = nlohmann::json::parse(slurp(dir / "s.json"));
@@ -44,7 +45,8 @@ TEST(RenderCli, WritesImageAndStatsWithEveryField) {
 
 TEST(RenderCli, SameSeedSameImageOtherSeedOtherImage) {
   fs::path dir = tempDir("seed");
-  std::string base = "render --scene " + asset("cornell_box.gltf") + " --width 24 --height 24 --spp 2 ";
+  std::string base =
+      "render --scene " + asset("cornell_box.gltf") + " --width 24 --height 24 --spp 2 ";
   ASSERT_EQ(runQlight(base + "--seed 5 --out " + (dir / "a.pfm").string()).exitCode, 0);
   ASSERT_EQ(runQlight(base + "--seed 5 --out " + (dir / "b.pfm").string()).exitCode, 0);
   ASSERT_EQ(runQlight(base + "--seed 6 --out " + (dir / "c.pfm").string()).exitCode, 0);
@@ -66,8 +68,9 @@ TEST(RenderCli, WritesExr) {
 // Depth 0 shows emitters only: a pixel is either black or the emitter's radiance.
 TEST(RenderCli, MaxDepthZeroShowsOnlyEmitters) {
   fs::path dir = tempDir("depth0");
-  auto r = runQlight("render --scene " + asset("cornell_box.gltf") +
-                     " --width 64 --height 64 --spp 4 --max-depth 0 --out " + (dir / "d.pfm").string());
+  auto r =
+      runQlight("render --scene " + asset("cornell_box.gltf") +
+                " --width 64 --height 64 --spp 4 --max-depth 0 --out " + (dir / "d.pfm").string());
   ASSERT_EQ(r.exitCode, 0) << r.output;
   image::LinearImage img = image::readPfm(dir / "d.pfm");
   // cornell_box.gltf: emissive (1, 0.70588, 0.23529) x strength 17.
@@ -111,10 +114,11 @@ TEST(RenderCli, UnknownImageFormatIsAnError) {
 
 TEST(RenderCli, AbsurdSettingsAreRejected) {
   std::string base = "render --scene " + asset("cornell_box.gltf") + " --out /tmp/qlight_y.png ";
-  for (const char* bad : {"--width 0", "--height -3", "--spp 0", "--max-depth 100000",
-                          "--exposure nan", "--exposure -1", "--estimator magic", "--rr maybe",
-                          "--time -1", "--strata 0x8", "--strata 8by8", "--strata 64x64",
-                          "--alpha-min 0.5 --alpha-max 0.1", "--points 0", "--select-probability 1"}) {
+  for (const char* bad :
+       {"--width 0", "--height -3", "--spp 0", "--max-depth 100000", "--exposure nan",
+        "--exposure -1", "--estimator magic", "--rr maybe", "--time -1", "--strata 0x8",
+        "--strata 8by8", "--strata 64x64", "--alpha-min 0.5 --alpha-max 0.1", "--points 0",
+        "--select-probability 1"}) {
     auto r = runQlight(base + bad);
     EXPECT_NE(r.exitCode, 0) << bad << "\n" << r.output;
   }

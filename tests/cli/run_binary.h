@@ -14,11 +14,14 @@ inline RunResult runQlight(const std::string& args) {
 }
 
 inline std::filesystem::path tempDir(const std::string& name) {
-  auto dir = std::filesystem::temp_directory_path() / ("qlight_test_" + name + "_" + std::to_string(::getpid()));
+  auto dir = std::filesystem::temp_directory_path() /
+             ("qlight_test_" + name + "_" + std::to_string(::getpid()));
   std::filesystem::create_directories(dir);
   return dir;
 }
 
-inline std::string asset(const char* name) { return std::string(QLIGHT_SOURCE_DIR) + "/assets/" + name; }
+inline std::string asset(const char* name) {
+  return std::string(QLIGHT_SOURCE_DIR) + "/assets/" + name;
+}
 
 }  // namespace qlight::test

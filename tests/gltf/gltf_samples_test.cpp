@@ -5,8 +5,8 @@
 #include <filesystem>
 #include <glm/gtc/quaternion.hpp>
 
-#include "engine/scene/animation.h"
 #include "engine/gltf/gltf_loader.h"
+#include "engine/scene/animation.h"
 #include "engine/scene/transforms.h"
 
 namespace qlight::gltf {

@@ -10,8 +10,8 @@
 #include <glm/gtc/quaternion.hpp>
 #include <optional>
 
-#include "engine/scene/animation.h"
 #include "engine/gltf/gltf_loader.h"
+#include "engine/scene/animation.h"
 #include "engine/scene/transforms.h"
 
 namespace qlight::gltf {

@@ -43,16 +43,15 @@ TEST_P(GuidedUnbiased, GuidedEqualsUnguidedWithinNoise) {
   expectAgree(on, off, c.scene);
 }
 
-INSTANTIATE_TEST_SUITE_P(
-    Scenes, GuidedUnbiased,
-    ::testing::Values(UnbiasedCase{"cornell_box.gltf", true, 4, 16},
-                      UnbiasedCase{"cornell_box.gltf", false, 4, 16},
-                      UnbiasedCase{"door_ajar.gltf", true, 2, 16},
-                      UnbiasedCase{"door_ajar.gltf", false, 1, 32}),
-    [](const auto& info) {
-      return std::string(info.param.scene[0] == 'c' ? "Cornell" : "Door") +
-             (info.param.nee ? "Nee" : "NoNee");
-    });
+INSTANTIATE_TEST_SUITE_P(Scenes, GuidedUnbiased,
+                         ::testing::Values(UnbiasedCase{"cornell_box.gltf", true, 4, 16},
+                                           UnbiasedCase{"cornell_box.gltf", false, 4, 16},
+                                           UnbiasedCase{"door_ajar.gltf", true, 2, 16},
+                                           UnbiasedCase{"door_ajar.gltf", false, 1, 32}),
+                         [](const auto& info) {
+                           return std::string(info.param.scene[0] == 'c' ? "Cornell" : "Door") +
+                                  (info.param.nee ? "Nee" : "NoNee");
+                         });
 
 }  // namespace
 }  // namespace qlight::test

@@ -35,8 +35,9 @@ TEST_F(LearningProgress, DoorSceneEmitterHitsRiseAndPathsShorten) {
   double lastFrames = meanOf(share, frames - 8, frames);
   double unguidedLength = meanOf(unguided.stats.pathLengthByFrame, 0, frames);
   double guidedLength = meanOf(length, frames - 8, frames);
-  std::printf("emitter hit share: unguided %.5f, guided first frames %.5f, last frames %.5f (%.1fx)\n",
-              unguidedShare, firstFrames, lastFrames, lastFrames / unguidedShare);
+  std::printf(
+      "emitter hit share: unguided %.5f, guided first frames %.5f, last frames %.5f (%.1fx)\n",
+      unguidedShare, firstFrames, lastFrames, lastFrames / unguidedShare);
   std::printf("mean path length: unguided %.3f, guided last frames %.3f (%.0f%% shorter)\n",
               unguidedLength, guidedLength, 100.0 * (1.0 - guidedLength / unguidedLength));
   // 14k paths a frame: unguided reaches the light ~200 times over 20 frames,

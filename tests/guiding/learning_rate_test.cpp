@@ -28,7 +28,8 @@ TEST(LearningRate, ClampsOneOverOnePlusVisits) {
 // combination of start count, batch size and bounds, including constant rates.
 TEST(LearningRate, ClosedFormRetentionMatchesSequentialProduct) {
   std::mt19937 rng(3);
-  const float bounds[][2] = {{1e-4f, 0.05f}, {0.01f, 0.5f}, {0.1f, 0.1f}, {1e-3f, 1.0f}, {0.2f, 0.9f}};
+  const float bounds[][2] = {
+      {1e-4f, 0.05f}, {0.01f, 0.5f}, {0.1f, 0.1f}, {1e-3f, 1.0f}, {0.2f, 0.9f}};
   for (auto& b : bounds)
     for (int trial = 0; trial < 400; ++trial) {
       uint32_t n0 = std::uniform_int_distribution<uint32_t>(0, 30000)(rng) >> (trial % 12);
@@ -80,7 +81,7 @@ TEST(LearningRate, NanOrInfNeverEntersATable) {
   EXPECT_EQ(updatedQ(0.5f, nan, 3, 10, 1e-4f, 0.05f, 1e-4f), 0.5f);
   EXPECT_EQ(updatedQ(0.5f, inf, 3, 10, 1e-4f, 0.05f, 1e-4f), 0.5f);
   EXPECT_EQ(updatedQ(0.5f, -inf, 3, 10, 1e-4f, 0.05f, 1e-4f), 0.5f);
-  EXPECT_EQ(updatedQ(0.5f, -5.0f, 1, 0, 1e-4f, 1.0f, 1e-4f), 0.5f);  // negative radiance: rejected
+  EXPECT_EQ(updatedQ(0.5f, -5.0f, 1, 0, 1e-4f, 1.0f, 1e-4f), 0.5f);   // negative radiance: rejected
   EXPECT_EQ(updatedQ(0.0f, 0.0f, 4, 0, 1e-4f, 0.05f, 1e-3f), 1e-3f);  // the floor holds
   EXPECT_TRUE(std::isfinite(updatedQ(3e38f, 3e38f * 2.0f, 2, 0, 1e-4f, 0.05f, 1e-4f)));
 }

@@ -44,10 +44,15 @@ TEST(PointSearch, WorksAcrossNegativeCoordinatesAndTinyHashTables) {
   std::vector<CachePoint> points = {{glm::vec3(-0.01f, -5.0f, 0.0f), 0, glm::vec3(0, 1, 0), 0},
                                     {glm::vec3(0.01f, -5.0f, 0.0f), 0, glm::vec3(0, 1, 0), 0}};
   PointGrid grid = buildPointGrid(points, 0.2f, 1);  // every cell in one bucket
-  EXPECT_EQ(findNearestPoint(grid, points, glm::vec3(-0.02f, -5.0f, 0.0f), glm::vec3(0, 1, 0), 0.1f, 0.7f), 0u);
-  EXPECT_EQ(findNearestPoint(grid, points, glm::vec3(0.02f, -5.0f, 0.0f), glm::vec3(0, 1, 0), 0.1f, 0.7f), 1u);
+  EXPECT_EQ(findNearestPoint(grid, points, glm::vec3(-0.02f, -5.0f, 0.0f), glm::vec3(0, 1, 0), 0.1f,
+                             0.7f),
+            0u);
+  EXPECT_EQ(
+      findNearestPoint(grid, points, glm::vec3(0.02f, -5.0f, 0.0f), glm::vec3(0, 1, 0), 0.1f, 0.7f),
+      1u);
   // The opposite side of the surface is a different hemisphere: no point there.
-  EXPECT_EQ(findNearestPoint(grid, points, glm::vec3(0.02f, -5.0f, 0.0f), glm::vec3(0, -1, 0), 0.1f, 0.7f),
+  EXPECT_EQ(findNearestPoint(grid, points, glm::vec3(0.02f, -5.0f, 0.0f), glm::vec3(0, -1, 0), 0.1f,
+                             0.7f),
             shared::kNoCachePoint);
   EXPECT_THROW(buildPointGrid(points, 0.2f, 3), std::invalid_argument);
 }

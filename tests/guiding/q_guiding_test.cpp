@@ -1,10 +1,10 @@
 // The guiding state across frames: points as ECS entities obeying the
 // rejection distance, Q learned over frames, and clean resets when the strata
 // change or the points are regenerated.
+#include <set>
+
 #include "engine/guiding/cache_point.h"
 #include "engine/session/renderer.h"
-
-#include <set>
 #include "tests/render/render_support.h"
 
 namespace qlight::test {

@@ -52,8 +52,15 @@ TEST_F(QUpdateGpu, UpdateAndCdfMatchCpuReference) {
   ctx().submitAndWait([&](VkCommandBuffer cmd) {
     gpu::PassRecorder rec(ctx(), cmd);
     shared::TableUpdatePush push{n, strata, rows, cols, 1, aMin, aMax, qFloor};
-    rec.pass("q_update", update).write(0, bq).write(1, bv).write(2, bc).write(3, bs).write(4, bn).write(5, bp)
-        .push(push).dispatchThreads(n);
+    rec.pass("q_update", update)
+        .write(0, bq)
+        .write(1, bv)
+        .write(2, bc)
+        .write(3, bs)
+        .write(4, bn)
+        .write(5, bp)
+        .push(push)
+        .dispatchThreads(n);
     scan.scanSegments(rec, bc, points, strata);
     rec.finish();
   });
@@ -77,13 +84,15 @@ TEST_F(QUpdateGpu, UpdateAndCdfMatchCpuReference) {
       // it scales the distance between the old value and the targets' mean.
       double mean = counts[e] ? double(sums[e]) / counts[e] : q[e];
       double spread = std::isfinite(mean) ? std::abs(q[e] - mean) : 0.0;
-      double tolerance = spread * (counts[e] + 1) * std::ldexp(1.0, -20) + 2e-6 * std::max(1.0f, expected);
+      double tolerance =
+          spread * (counts[e] + 1) * std::ldexp(1.0, -20) + 2e-6 * std::max(1.0f, expected);
       ASSERT_NEAR(gq[e], expected, tolerance) << "entry " << e;
       ASSERT_EQ(gv[e], visits[e] + counts[e]);
       ASSERT_EQ(gs[2 * e], 0u);
       ASSERT_EQ(gs[2 * e + 1], 0u);
       ASSERT_EQ(gn[e], 0u);
-      cdf += double(gq[e]) * shared::stratumCosineIntegral(k, rows, cols);  // the scan of what the update wrote
+      cdf += double(gq[e]) *
+             shared::stratumCosineIntegral(k, rows, cols);  // the scan of what the update wrote
       ASSERT_NEAR(gc[e], cdf, 1e-5 * cdf) << "cdf of entry " << e;
     }
   }

@@ -67,12 +67,11 @@ TEST_P(Furnace, RadianceIsEmissionOverOneMinusAlbedo) {
   EXPECT_GT(std::abs(truncated - expected), 5.0 * m.standardError());
 }
 
-INSTANTIATE_TEST_SUITE_P(
-    AlbedosAndEstimators, Furnace,
-    ::testing::Values(FurnaceCase{0.5f, 1.0f, render::Estimator::Mis},
-                      FurnaceCase{0.8f, 0.5f, render::Estimator::Mis},
-                      FurnaceCase{0.8f, 0.5f, render::Estimator::BsdfOnly},
-                      FurnaceCase{0.8f, 0.5f, render::Estimator::NeeOnly}));
+INSTANTIATE_TEST_SUITE_P(AlbedosAndEstimators, Furnace,
+                         ::testing::Values(FurnaceCase{0.5f, 1.0f, render::Estimator::Mis},
+                                           FurnaceCase{0.8f, 0.5f, render::Estimator::Mis},
+                                           FurnaceCase{0.8f, 0.5f, render::Estimator::BsdfOnly},
+                                           FurnaceCase{0.8f, 0.5f, render::Estimator::NeeOnly}));
 
 }  // namespace
 }  // namespace qlight::test

@@ -4,8 +4,8 @@
 #include <cmath>
 #include <vector>
 
-#include "engine/session/offline_render.h"
 #include "engine/gltf/gltf_loader.h"
+#include "engine/session/offline_render.h"
 #include "tests/gpu/gpu_fixture.h"
 
 namespace qlight::test {

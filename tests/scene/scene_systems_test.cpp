@@ -5,18 +5,17 @@
 
 #include <glm/gtc/quaternion.hpp>
 
-#include "engine/scene/animation.h"
 #include "engine/gltf/gltf_loader.h"
+#include "engine/scene/animation.h"
 #include "engine/scene/instantiate.h"
 #include "engine/scene/procedural.h"
-#include "tests/scene/matrix_compare.h"
 #include "engine/scene/transforms.h"
+#include "tests/scene/matrix_compare.h"
 
 namespace qlight::scene {
 namespace {
 
 using gltf::loadGltf;
-
 
 // root (mesh) -> arm (animated rotation about y) -> hand (mesh, light); plus a static node.
 SceneAsset armScene() {

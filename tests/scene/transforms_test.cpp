@@ -13,7 +13,6 @@
 namespace qlight::scene {
 namespace {
 
-
 TEST(Transforms, MatrixIsTranslationTimesRotationTimesScale) {
   LocalTransform local;
   local.translation = {1, 2, 3};

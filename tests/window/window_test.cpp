@@ -22,7 +22,6 @@ namespace {
 
 namespace fs = std::filesystem;
 
-
 TEST(WindowDemo, PresentsFramesWithoutValidationMessagesAndWritesScreenshot) {
   if (!std::getenv("DISPLAY") && !XvfbServer::installed())
     GTEST_SKIP() << "no DISPLAY and Xvfb is not installed";
