@@ -276,17 +276,7 @@ TEST(GltfBadInput, WrongAccessorTypes) {
 
 TEST(GltfBadInput, SparseIndexOutOfRange) {
   TempDir dir;
-  json doc = triangleDoc();
-  Bytes b;
-  b.data = testing::triangleBytes();
-  b.add<uint16_t>({5, 0});  // sparse index 5 of 3 elements, at 44
-  b.add<float>({2, 2, 2});  // replacement value, at 48
-  testing::setBuffer(doc, b.data);
-  doc["bufferViews"].push_back({{"buffer", 0}, {"byteOffset", 44}, {"byteLength", 2}});
-  doc["bufferViews"].push_back({{"buffer", 0}, {"byteOffset", 48}, {"byteLength", 12}});
-  doc["accessors"][0]["sparse"] = {{"count", 1},
-                                   {"indices", {{"bufferView", 2}, {"componentType", 5123}}},
-                                   {"values", {{"bufferView", 3}}}};
+  json doc = testing::sparseTriangleDoc(5, {2, 2, 2});  // index 5 of 3 elements
   expectLoadError(writeDoc(dir, "scene.gltf", doc), "accessor 0 sparse index 5 is out of range");
 }
 

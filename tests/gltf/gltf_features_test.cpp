@@ -146,17 +146,7 @@ TEST(GltfFeatures, TriangleStripsAndFansBecomeListsWithTheirWinding) {
 
 TEST(GltfFeatures, SparseAccessorReplacesValues) {
   TempDir dir;
-  json doc = triangleDoc();
-  Bytes b;
-  b.data = testing::triangleBytes();
-  b.add<uint16_t>({2, 0});           // at 44: sparse index 2
-  b.add<float>({0.0f, 3.0f, 0.0f});  // at 48: new position of vertex 2
-  testing::setBuffer(doc, b.data);
-  doc["bufferViews"].push_back({{"buffer", 0}, {"byteOffset", 44}, {"byteLength", 2}});
-  doc["bufferViews"].push_back({{"buffer", 0}, {"byteOffset", 48}, {"byteLength", 12}});
-  doc["accessors"][0]["sparse"] = {{"count", 1},
-                                   {"indices", {{"bufferView", 2}, {"componentType", 5123}}},
-                                   {"values", {{"bufferView", 3}}}};
+  json doc = testing::sparseTriangleDoc(2, {0.0f, 3.0f, 0.0f});  // a new position of vertex 2
   const SceneAsset scene = loadGltf(writeDoc(dir, "sparse.gltf", doc));
   EXPECT_EQ(scene.meshes[0].positions[2], glm::vec3(0, 3, 0));
   EXPECT_EQ(scene.bounds.max.y, 3.0f);

@@ -110,6 +110,23 @@ inline void setBuffer(json& doc, const std::vector<uint8_t>& bytes) {
   doc["buffers"] = json::array({{{"byteLength", bytes.size()}, {"uri", dataUri(bytes)}}});
 }
 
+// The triangle of triangleDoc() with a sparse accessor replacing POSITION `index` by
+// `value` (index at byte 44, value at 48, both in views of their own).
+inline json sparseTriangleDoc(uint16_t index, std::initializer_list<float> value) {
+  json doc = triangleDoc();
+  Bytes b;
+  b.data = triangleBytes();
+  b.add<uint16_t>({index, 0});
+  b.add<float>(value);
+  setBuffer(doc, b.data);
+  doc["bufferViews"].push_back({{"buffer", 0}, {"byteOffset", 44}, {"byteLength", 2}});
+  doc["bufferViews"].push_back({{"buffer", 0}, {"byteOffset", 48}, {"byteLength", 12}});
+  doc["accessors"][0]["sparse"] = {{"count", 1},
+                                   {"indices", {{"bufferView", 2}, {"componentType", 5123}}},
+                                   {"values", {{"bufferView", 3}}}};
+  return doc;
+}
+
 inline std::filesystem::path writeDoc(const TempDir& dir, const std::string& name,
                                       const json& doc) {
   const std::filesystem::path path = dir / name;

@@ -1,6 +1,7 @@
 // The guiding state across frames: points as ECS entities obeying the
 // rejection distance, Q learned over frames, and clean resets when the strata
 // change or the points are regenerated.
+#include <memory>
 #include <set>
 
 #include "engine/guiding/cache_point.h"
@@ -10,16 +11,25 @@
 namespace qlight::test {
 namespace {
 
-class QGuidingState : public GpuTest {};
+class QGuidingState : public GpuTest {
+ protected:
+  // The Cornell box at 32x32, 2 spp per frame, guided with a small point budget.
+  std::unique_ptr<session::Renderer> guidedCornell(uint32_t budget, uint32_t darts) {
+    asset_ = gltf::loadGltf(assetPath("cornell_box.gltf"));
+    render::RenderSettings s = smallSettings(32, 32, 2);
+    s.samplesPerFrame = 2;
+    settings_.pointBudget = budget;
+    settings_.dartPaths = darts;
+    return std::make_unique<session::Renderer>(ctx(), asset_, s, settings_, 1.0f);
+  }
+  scene::SceneAsset asset_;
+  guiding::GuidingSettings settings_;
+};
 
 TEST_F(QGuidingState, PointsLearnAndResetCleanly) {
-  scene::SceneAsset asset = gltf::loadGltf(assetPath("cornell_box.gltf"));
-  render::RenderSettings s = smallSettings(32, 32, 2);
-  s.samplesPerFrame = 2;
-  guiding::GuidingSettings g;
-  g.pointBudget = 2048;
-  g.dartPaths = 8192;
-  session::Renderer renderer(ctx(), asset, s, g, 1.0f);
+  auto owner = guidedCornell(2048, 8192);
+  session::Renderer& renderer = *owner;
+  guiding::GuidingSettings g = settings_;
   const guiding::QGuide& guide = *renderer.guide();
   ecs::Registry& registry = renderer.world().registry();
 
@@ -73,13 +83,8 @@ TEST_F(QGuidingState, PointsLearnAndResetCleanly) {
 // (swap-and-pop moves the last point into the hole) leaves every row with its point, and
 // the slot freed is taken by the next point with a fresh row.
 TEST_F(QGuidingState, SlotsStayWithTheirPointsWhenOthersAreDestroyed) {
-  scene::SceneAsset asset = gltf::loadGltf(assetPath("cornell_box.gltf"));
-  render::RenderSettings s = smallSettings(32, 32, 2);
-  s.samplesPerFrame = 2;
-  guiding::GuidingSettings g;
-  g.pointBudget = 1024;
-  g.dartPaths = 4096;
-  session::Renderer renderer(ctx(), asset, s, g, 1.0f);
+  auto owner = guidedCornell(1024, 4096);
+  session::Renderer& renderer = *owner;
   const guiding::QGuide& guide = *renderer.guide();
   ecs::Registry& registry = renderer.world().registry();
   for (int f = 0; f < 6; ++f) renderer.renderFrame(0.0f);

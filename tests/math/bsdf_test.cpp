@@ -148,21 +148,30 @@ double failureProbability(const BsdfParams& p, vec3 wo, double* errorEstimate, i
   return bsdfSpecularProbability(p, wo) * r.value;
 }
 
-TEST(Bsdf, PdfPlusFailureMassIsOne) {
+// Every roughness x metallic x outgoing angle of the lobe tests, with the
+// upper-hemisphere grid stretched around the mirror direction.
+template <class F>
+void forEachGlossyCase(F&& test) {
   for (float roughness : kRoughnesses)
     for (float metallic : kMetallics)
       for (double thetaDeg : kThetaOs) {
-        BsdfParams p = params(roughness, metallic);
         vec3 wo = outgoing(thetaDeg);
-        SphereGrid upper = mirrorGrid(wo, ggxAlpha(roughness), 0, kPiD / 2);
+        test(params(roughness, metallic), wo, mirrorGrid(wo, ggxAlpha(roughness), 0, kPiD / 2),
+             label(roughness, metallic, thetaDeg));
+      }
+}
+
+TEST(Bsdf, PdfPlusFailureMassIsOne) {
+  forEachGlossyCase(
+      [](const BsdfParams& p, vec3 wo, const SphereGrid& upper, const std::string& what) {
         auto r = integrateWithError(
             upper, [&](vec3 wi) { return bsdfPdf(p, wo, wi); }, kQuadN);
         double failError;
         double fail = failureProbability(p, wo, &failError);
         r.value += fail;
         r.errorEstimate += failError;
-        EXPECT_QUADRATURE_NEAR(r, 1.0, label(roughness, metallic, thetaDeg));
-      }
+        EXPECT_QUADRATURE_NEAR(r, 1.0, what);
+      });
 }
 
 // Samples binned on the stretched upper-hemisphere grid plus one bin for
@@ -170,34 +179,28 @@ TEST(Bsdf, PdfPlusFailureMassIsOne) {
 TEST(Bsdf, SamplesFollowPdf) {
   constexpr int kBins = 32, kSub = 8, kSamples = 100000;
   TestRandom rnd(71);
-  for (float roughness : kRoughnesses)
-    for (float metallic : kMetallics)
-      for (double thetaDeg : kThetaOs) {
-        BsdfParams p = params(roughness, metallic);
-        vec3 wo = outgoing(thetaDeg);
-        SphereGrid upper = mirrorGrid(wo, ggxAlpha(roughness), 0, kPiD / 2);
-        std::vector<double> observed(kBins * kBins + 1, 0.0);
-        for (int i = 0; i < kSamples; ++i) {
-          vec3 wi;
-          float pdf;
-          if (bsdfSample(p, wo, rnd.next3(), wi, pdf)) {
-            int b = upper.bin(wi, kBins);
-            ASSERT_GE(b, 0);
-            observed[b] += 1.0;
-          } else {
-            observed[kBins * kBins] += 1.0;
-          }
-        }
-        auto expected =
-            upper.binIntegrals([&](vec3 wi) { return bsdfPdf(p, wo, wi); }, kBins, kSub);
-        double failError;
-        // A coarse grid suffices: the failure count's own noise is far larger.
-        expected.push_back(failureProbability(p, wo, &failError, 96));
-        for (double& e : expected) e *= kSamples;
-        auto result = chiSquareTest(observed, expected);
-        EXPECT_TRUE(result.pass())
-            << label(roughness, metallic, thetaDeg) << ": " << result.describe();
+  forEachGlossyCase([&](const BsdfParams& p, vec3 wo, const SphereGrid& upper,
+                        const std::string& what) {
+    std::vector<double> observed(kBins * kBins + 1, 0.0);
+    for (int i = 0; i < kSamples; ++i) {
+      vec3 wi;
+      float pdf;
+      if (bsdfSample(p, wo, rnd.next3(), wi, pdf)) {
+        int b = upper.bin(wi, kBins);
+        ASSERT_GE(b, 0);
+        observed[b] += 1.0;
+      } else {
+        observed[kBins * kBins] += 1.0;
       }
+    }
+    auto expected = upper.binIntegrals([&](vec3 wi) { return bsdfPdf(p, wo, wi); }, kBins, kSub);
+    double failError;
+    // A coarse grid suffices: the failure count's own noise is far larger.
+    expected.push_back(failureProbability(p, wo, &failError, 96));
+    for (double& e : expected) e *= kSamples;
+    auto result = chiSquareTest(observed, expected);
+    EXPECT_TRUE(result.pass()) << what << ": " << result.describe();
+  });
 }
 
 TEST(Bsdf, SampleReportsPdfAndWeightOfItsDirection) {
