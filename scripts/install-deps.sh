@@ -8,6 +8,7 @@ packages=(
   libglfw3-dev libglm-dev libtinygltf-dev libimgui-dev
   libstb-dev libtinyexr-dev libcli11-dev nlohmann-json3-dev
   libgtest-dev libgmock-dev libbenchmark-dev
+  libembree-dev  # bench_traversal_vs_embree only
   xvfb x11-utils
   python3-matplotlib python3-numpy clang-format
 )

@@ -54,4 +54,8 @@
 // --- guiding darts (guiding_darts.comp): the scene block, and its output ---
 #define QL_BIND_DART_CANDIDATES 30
 
+// --- ray lists of trace_rays.comp (bench/traversal_vs_embree): the BVH block, and these ---
+#define QL_BIND_TRACE_RAYS 31
+#define QL_BIND_TRACE_HITS 32
+
 #endif
