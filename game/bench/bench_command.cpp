@@ -29,6 +29,7 @@ struct BenchArgs {
   uint32_t referenceSpp = 0;
   uint32_t width = 0, height = 0;
   uint32_t sppPerFrame = 2;
+  std::string traversal;  // bench_traversal_vs_embree's JSON to include
   bool report = true;
 };
 
@@ -66,6 +67,32 @@ void validate(const BenchArgs& a, const std::vector<std::string>& scenes) {
   fs::remove(fs::path(a.out) / ".write-test");
 }
 
+// The traversal comparison's figures as the report reads them (scene, ray kind, both
+// tracers' rays per second, their ratio and the disagreeing rays).
+nlohmann::json traversalEntry(const std::string& file) {
+  if (file.empty()) return nullptr;
+  nlohmann::json in;
+  try {
+    in = nlohmann::json::parse(std::ifstream(file));
+  } catch (const std::exception& e) {
+    throw std::invalid_argument("bench: " + file + " is not a traversal result: " + e.what());
+  }
+  nlohmann::json scenes = nlohmann::json::array();
+  for (const auto& s : in.at("scenes")) {
+    nlohmann::json kinds = nlohmann::json::array();
+    for (const auto& set : s.at("sets"))
+      kinds.push_back({{"kind", set.at("kind")},
+                       {"qlight_mrays", set.at("qlight_mrays_per_s")},
+                       {"embree_mrays", set.at("embree_mrays_per_s")},
+                       {"ratio", set.at("ratio_qlight_to_embree")},
+                       {"mismatches", set.at("agreement").at("mismatches")},
+                       {"rays", set.at("rays")}});
+    const std::string name = fs::path(s.at("name").get<std::string>()).stem().string();
+    scenes.push_back({{"scene", name}, {"triangles", s.at("triangles")}, {"kinds", kinds}});
+  }
+  return {{"scenes", scenes}};
+}
+
 std::string isoDate() {
   std::time_t now = std::time(nullptr);
   char text[32];
@@ -79,6 +106,7 @@ int runBench(BenchArgs a, const CommonOptions& common) {
   for (const std::string& s : a.scenes) scenes.push_back(resolveScene(s));
   if (scenes.empty()) scenes = shippedScenes();
   validate(a, scenes);
+  const nlohmann::json traversal = traversalEntry(a.traversal);  // fails before rendering
   auto ctx = createContext(common, /*windowed=*/false);
 
   render::RenderSettings settings;
@@ -121,7 +149,7 @@ int runBench(BenchArgs a, const CommonOptions& common) {
                       {"renderer_version", rendererVersion()},
                       {"date", isoDate()},
                       {"scenes", sceneEntries},
-                      {"traversal", nullptr}};
+                      {"traversal", traversal}};
   session::writeJson(fs::path(a.out) / "bench.json", j);
   if (a.report) writeReport(a.out);
   std::printf("qlight bench: %zu scenes, %zu methods, %.1f s each; %s/report.md\n", scenes.size(),
@@ -163,6 +191,8 @@ std::function<int()> addBenchCommand(CLI::App& app, const CommonOptions& common)
       ->capture_default_str();
   cmd->add_option("--cache", args->cache,
                   "reference cache folder (default ~/.cache/qlight/references)");
+  cmd->add_option("--traversal", args->traversal,
+                  "include this bench_traversal_vs_embree --out JSON in the report");
   cmd->add_flag("!--no-report", args->report, "skip tools/bench_report.py (JSON and images only)");
   return [cmd, args, &common]() -> int {
     if (!cmd->parsed()) return -1;
