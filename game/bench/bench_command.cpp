@@ -127,7 +127,9 @@ int runBench(BenchArgs a, const CommonOptions& common) {
     const scene::SceneAsset asset = gltf::loadGltf(scenes[i]);
     SceneBench sb;
     sb.name = name;
-    sb.file = scenes[i];
+    // Shipped scenes are named relative to the repository, so reports read the same anywhere.
+    const fs::path relative = fs::relative(scenes[i], QLIGHT_SOURCE_DIR);
+    sb.file = relative.empty() || *relative.begin() == ".." ? fs::path(scenes[i]) : relative;
     for (const scene::MeshAsset& m : asset.meshes) sb.triangles += m.triangleCount();
     const double base = perScene * double(i);
     sb.reference = loadOrRenderReference(*ctx, asset, scenes[i], settings, a.referenceSpp,
