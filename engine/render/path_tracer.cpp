@@ -29,11 +29,11 @@ PathTracer::PathTracer(const gpu::Context& ctx, const RenderSettings& settings)
       trace_(ctx, "pt_trace"),
       end_(ctx, "pt_end"),
       queue_(ctx, "pt_queue"),
-      decay_(ctx, "accum_decay"),
+      queueState_(ctx, 2 * sizeof(shared::QueueState), "path.queues",
+                  VK_BUFFER_USAGE_INDIRECT_BUFFER_BIT),
       frameUniforms_(ctx, sizeof(FrameUniforms), "frame.uniforms", 0, gpu::MemoryUse::HostVisible),
       stats_(ctx, shared::kStatCount * sizeof(uint32_t), "frame.stats"),
-      queueState_(ctx, 2 * sizeof(shared::QueueState), "path.queues",
-                  VK_BUFFER_USAGE_INDIRECT_BUFFER_BIT) {
+      decay_(ctx, "accum_decay") {
   setSettings(settings);
 }
 

@@ -34,7 +34,9 @@ TEST_P(GuidedUnbiased, GuidedEqualsUnguidedWithinNoise) {
       g.seed = seed;
       auto r = session::renderScene(ctx(), asset, s, c.spp, 0.0f, g);
       EXPECT_EQ(r.stats.counters.invalidSamples, 0u);
-      if (guided) EXPECT_GT(r.stats.guidingStats.points, 100u);
+      if (guided) {
+        EXPECT_GT(r.stats.guidingStats.points, 100u);
+      }
       return r.image;
     };
   };

@@ -72,8 +72,9 @@ TEST(PointAcceptance, NoTwoCompatiblePointsCloserThanTheRejectionDistance) {
   }
   for (size_t i = 0; i < accepted.size(); ++i)
     for (size_t j = i + 1; j < accepted.size(); ++j)
-      if (glm::dot(accepted[i].normal, accepted[j].normal) > 0.7f)
+      if (glm::dot(accepted[i].normal, accepted[j].normal) > 0.7f) {
         ASSERT_GE(glm::distance(accepted[i].position, accepted[j].position), r);
+      }
   // Random sequential adsorption on a unit square per side: about 0.7 / r^2
   // points at saturation; 20000 darts get close to it on both sides.
   EXPECT_GT(accepted.size(), size_t(2 * 0.5f / (r * r)));

@@ -42,8 +42,9 @@ TEST_F(QGuidingState, PointsLearnAndResetCleanly) {
     for (size_t j = i + 1; j < points.size(); ++j) {
       const auto& a = points.data()[i];
       const auto& b = points.data()[j];
-      if (glm::dot(a.normal, b.normal) >= g.normalCosine)
+      if (glm::dot(a.normal, b.normal) >= g.normalCosine) {
         ASSERT_GE(glm::distance(a.position, b.position), r * (1.0f - 1e-5f));
+      }
     }
 
   session::FrameResult last;
