@@ -651,6 +651,10 @@ def run_description(bench):
         ("date", bench.get("date")),
         ("scenes", ", ".join(str(s["name"]) for s in bench["scenes"]) or "none"),
     ]
+    settings = bench.get("settings")
+    if isinstance(settings, dict) and settings:
+        items.append(("renderer and guiding settings",
+                      ", ".join(f"{key} {value}" for key, value in settings.items())))
     return [f"- {name}: {value if value not in (None, '') else 'n/a'}" for name, value in items]
 
 

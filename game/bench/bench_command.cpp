@@ -31,6 +31,11 @@ struct BenchArgs {
   uint32_t sppPerFrame = 2;
   std::string traversal;  // bench_traversal_vs_embree's JSON to include
   bool report = true;
+  // The methods' renderer and guiding settings (each method sets guiding on or off and
+  // light learning itself).
+  render::RenderSettings render;
+  guiding::GuidingSettings guiding;
+  GuidingCli guidingCli;
 };
 
 // The quick mode finishes in about a minute on lavapipe (2 cores), the full one in well
@@ -109,14 +114,18 @@ int runBench(BenchArgs a, const CommonOptions& common) {
   const nlohmann::json traversal = traversalEntry(a.traversal);  // fails before rendering
   auto ctx = createContext(common, /*windowed=*/false);
 
-  render::RenderSettings settings;
+  render::RenderSettings settings = a.render;
   settings.width = a.width;
   settings.height = a.height;
   settings.samplesPerFrame = a.sppPerFrame;
   MethodRunSettings run;
   run.render = settings;
   run.budgetSeconds = *a.budgetSeconds;
-  const std::vector<MethodSpec> methods = benchMethods(guiding::GuidingSettings{});
+  const std::vector<MethodSpec> methods = benchMethods(a.guiding);
+  // The reference is the same image by its lowest-variance estimator, whatever the methods use.
+  render::RenderSettings referenceSettings = settings;
+  referenceSettings.estimator = render::Estimator::Mis;
+  referenceSettings.russianRoulette = true;
 
   // Progress in units of work: a reference counts 1 (0 when cached), methods their budget.
   const double perScene = 1.0 + *a.budgetSeconds * double(methods.size());
@@ -132,7 +141,7 @@ int runBench(BenchArgs a, const CommonOptions& common) {
     sb.file = relative.empty() || *relative.begin() == ".." ? fs::path(scenes[i]) : relative;
     for (const scene::MeshAsset& m : asset.meshes) sb.triangles += m.triangleCount();
     const double base = perScene * double(i);
-    sb.reference = loadOrRenderReference(*ctx, asset, scenes[i], settings, a.referenceSpp,
+    sb.reference = loadOrRenderReference(*ctx, asset, scenes[i], referenceSettings, a.referenceSpp,
                                          cacheDirectory(a), progress, base, name);
     sb.methods =
         runMethods(*ctx, asset, methods, run, sb.reference.image, progress, base + 1.0, name);
@@ -141,17 +150,30 @@ int runBench(BenchArgs a, const CommonOptions& common) {
   }
   progress.finish();
 
-  nlohmann::json j = {{"mode", a.quick ? "quick" : "full"},
-                      {"device", ctx->deviceName()},
-                      {"width", a.width},
-                      {"height", a.height},
-                      {"spp_per_frame", a.sppPerFrame},
-                      {"time_budget_seconds", *a.budgetSeconds},
-                      {"reference_spp", a.referenceSpp},
-                      {"renderer_version", rendererVersion()},
-                      {"date", isoDate()},
-                      {"scenes", sceneEntries},
-                      {"traversal", traversal}};
+  nlohmann::json j = {
+      {"mode", a.quick ? "quick" : "full"},
+      {"device", ctx->deviceName()},
+      {"width", a.width},
+      {"height", a.height},
+      {"spp_per_frame", a.sppPerFrame},
+      {"time_budget_seconds", *a.budgetSeconds},
+      {"reference_spp", a.referenceSpp},
+      {"renderer_version", rendererVersion()},
+      {"date", isoDate()},
+      {"settings",
+       {{"estimator", settings.estimator == render::Estimator::Mis        ? "mis"
+                      : settings.estimator == render::Estimator::BsdfOnly ? "bsdf"
+                                                                          : "nee"},
+        {"russian_roulette", settings.russianRoulette},
+        {"max_depth", settings.maxDepth},
+        {"strata", std::to_string(a.guiding.rows) + "x" + std::to_string(a.guiding.cols)},
+        {"select_probability", a.guiding.selectProbability},
+        {"confidence_updates", a.guiding.confidenceUpdates},
+        {"alpha_min", a.guiding.alphaMin},
+        {"alpha_max", a.guiding.alphaMax},
+        {"point_budget", a.guiding.pointBudget}}},
+      {"scenes", sceneEntries},
+      {"traversal", traversal}};
   session::writeJson(fs::path(a.out) / "bench.json", j);
   if (a.report) writeReport(a.out);
   std::printf("qlight bench: %zu scenes, %zu methods, %.1f s each; %s/report.md\n", scenes.size(),
@@ -193,11 +215,18 @@ std::function<int()> addBenchCommand(CLI::App& app, const CommonOptions& common)
       ->capture_default_str();
   cmd->add_option("--cache", args->cache,
                   "reference cache folder (default ~/.cache/qlight/references)");
+  std::map<std::string, bool> onOff{{"on", true}, {"off", false}};
+  cmd->add_option("--rr", args->render.russianRoulette, "the methods' Russian roulette: on|off")
+      ->transform(CLI::CheckedTransformer(onOff, CLI::ignore_case));
+  cmd->add_option("--max-depth", args->render.maxDepth, "bounces (the reference's too)")
+      ->check(CLI::Range(0, 1024));
+  addGuidingOptions(*cmd, args->guiding, args->guidingCli);
   cmd->add_option("--traversal", args->traversal,
                   "include this bench_traversal_vs_embree --out JSON in the report");
   cmd->add_flag("!--no-report", args->report, "skip tools/bench_report.py (JSON and images only)");
   return [cmd, args, &common]() -> int {
     if (!cmd->parsed()) return -1;
+    finishGuidingOptions(args->guidingCli, args->guiding, args->render);
     return runBench(*args, common);
   };
 }
