@@ -661,9 +661,9 @@ def run_description(bench):
 HOW_TO_READ = (
     "relMSE is the mean over pixels and RGB channels of (x - ref)^2 / (ref^2 + 0.01), "
     "measured against the scene's reference image. Every method renders for the same time budget. "
-    "\"Time to unguided's error\" is the time a method needs to reach the unguided method's final "
-    "relMSE divided by the unguided method's render time: a value below 1 means the method reaches "
-    "that error sooner; \"(extrapolated)\" marks methods that did not reach it within the budget, "
+    "\"Time to unguided's error\" is the time from which a method's relMSE stays at or below the "
+    "unguided method's final relMSE, divided by the unguided method's render time: a value below 1 "
+    "means the method reaches that error sooner; \"(extrapolated)\" marks methods that did not reach it within the budget, "
     "whose time is extrapolated from their last checkpoint with relMSE ~ 1/t. "
     "\"Equal-spp relMSE ratio\" is the method's relMSE divided by the unguided relMSE at the same "
     "samples per pixel (below 1: lower error per sample). \"Time per sample ratio\" is the method's "

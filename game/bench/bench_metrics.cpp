@@ -32,18 +32,22 @@ double relativeMse(const image::LinearImage& x, const image::LinearImage& refere
 
 std::optional<TimeToError> timeToReach(const std::vector<Checkpoint>& run, double target) {
   if (run.empty() || !(target > 0)) return std::nullopt;
-  for (size_t i = 0; i < run.size(); ++i) {
-    if (run[i].relMse > target) continue;
-    if (i == 0) return TimeToError{run[0].seconds, false};
-    const Checkpoint &a = run[i - 1], &b = run[i];
-    // relMSE falls between a and b: the time on the log-log line where it equals target.
-    if (a.relMse <= 0 || b.relMse <= 0 || a.seconds <= 0) return TimeToError{b.seconds, false};
-    double t = (std::log(target) - std::log(a.relMse)) / (std::log(b.relMse) - std::log(a.relMse));
-    return TimeToError{
-        std::exp(std::log(a.seconds) + t * (std::log(b.seconds) - std::log(a.seconds))), false};
+  // The first checkpoint from which the error stays at or below the target: a firefly can
+  // lift a run's error above a level it had reached, so the first crossing alone would
+  // credit a method with a level it did not hold.
+  size_t i = run.size();
+  while (i > 0 && run[i - 1].relMse <= target) --i;
+  if (i == run.size()) {
+    const Checkpoint& last = run.back();
+    return TimeToError{last.seconds * last.relMse / target, true};
   }
-  const Checkpoint& last = run.back();
-  return TimeToError{last.seconds * last.relMse / target, true};
+  if (i == 0) return TimeToError{run[0].seconds, false};
+  const Checkpoint &a = run[i - 1], &b = run[i];
+  // relMSE falls between a and b: the time on the log-log line where it equals the target.
+  if (a.relMse <= 0 || b.relMse <= 0 || a.seconds <= 0) return TimeToError{b.seconds, false};
+  double t = (std::log(target) - std::log(a.relMse)) / (std::log(b.relMse) - std::log(a.relMse));
+  return TimeToError{
+      std::exp(std::log(a.seconds) + t * (std::log(b.seconds) - std::log(a.seconds))), false};
 }
 
 std::optional<double> relMseAtSpp(const std::vector<Checkpoint>& run, uint32_t spp) {

@@ -18,8 +18,8 @@ struct Checkpoint {
   double relMse = 0;
 };
 
-// The time at which a run's error first reaches `target`, interpolated in log-log between
-// checkpoints. When the run never reaches it, extrapolated from the last checkpoint with
+// The time from which a run's error stays at or below `target`, interpolated in log-log
+// between checkpoints. When the run never reaches it, extrapolated from the last checkpoint with
 // relMSE ~ 1/t (the Monte Carlo rate) and flagged.
 struct TimeToError {
   double seconds = 0;
