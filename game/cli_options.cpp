@@ -7,6 +7,20 @@ namespace qlight::game {
 void addRenderOptions(CLI::App& app, render::RenderSettings& s) {
   app.add_option("--width", s.width, "image width in pixels")->check(CLI::Range(1, 16384));
   app.add_option("--height", s.height, "image height in pixels")->check(CLI::Range(1, 16384));
+  addTracingOptions(app, s);
+  app.add_option("--exposure", s.exposure, "exposure multiplier for PNG and display")
+      ->check(CLI::PositiveNumber);
+  app.add_option(
+         "--temporal-blend", s.temporalBlend,
+         "animated scenes: weight kept of the accumulated image when things move (0: restart)")
+      ->check(CLI::Range(0.0, 0.99));
+  std::map<std::string, image::Tonemap> tonemaps{{"aces", image::Tonemap::Aces},
+                                                 {"clamp", image::Tonemap::Clamp}};
+  app.add_option("--tonemap", s.tonemap, "aces or clamp (PNG and display only)")
+      ->transform(CLI::CheckedTransformer(tonemaps, CLI::ignore_case));
+}
+
+void addTracingOptions(CLI::App& app, render::RenderSettings& s) {
   app.add_option("--seed", s.seed, "random seed (same seed, same image)");
   app.add_option("--max-depth", s.maxDepth, "bounces: 0 = emitters only, 1 = direct light")
       ->check(CLI::Range(0, 1024));
@@ -18,16 +32,6 @@ void addRenderOptions(CLI::App& app, render::RenderSettings& s) {
   std::map<std::string, bool> onOff{{"on", true}, {"off", false}};
   app.add_option("--rr", s.russianRoulette, "Russian roulette: on|off")
       ->transform(CLI::CheckedTransformer(onOff, CLI::ignore_case));
-  app.add_option("--exposure", s.exposure, "exposure multiplier for PNG and display")
-      ->check(CLI::PositiveNumber);
-  app.add_option(
-         "--temporal-blend", s.temporalBlend,
-         "animated scenes: weight kept of the accumulated image when things move (0: restart)")
-      ->check(CLI::Range(0.0, 0.99));
-  std::map<std::string, image::Tonemap> tonemaps{{"aces", image::Tonemap::Aces},
-                                                 {"clamp", image::Tonemap::Clamp}};
-  app.add_option("--tonemap", s.tonemap, "aces or clamp (PNG and display only)")
-      ->transform(CLI::CheckedTransformer(tonemaps, CLI::ignore_case));
 }
 
 void addGuidingOptions(CLI::App& app, guiding::GuidingSettings& g, GuidingCli& cli) {

@@ -13,8 +13,10 @@ struct CommonOptions {
   bool validation = false;
 };
 
-// Adds --width --height --seed --max-depth --estimator --rr --exposure --tonemap.
+// Adds --width --height, the tracing options, --exposure --temporal-blend --tonemap.
 void addRenderOptions(CLI::App& app, render::RenderSettings& s);
+// Adds what changes the traced image: --seed --max-depth --estimator --rr.
+void addTracingOptions(CLI::App& app, render::RenderSettings& s);
 
 // Adds --guiding --strata --alpha-min --alpha-max --points --light-learning
 // --select-probability --point-set --nee. `strata` and `nee` are applied by

@@ -86,12 +86,15 @@ void CachePointSet::freeDestroyed(ecs::Registry& registry) {
   gridStale_ = true;
 }
 
-std::vector<uint32_t> CachePointSet::sync(ecs::Registry& registry) {
+CachePointSet::SyncResult CachePointSet::sync(ecs::Registry& registry) {
   freeDestroyed(registry);
   uploadChanged(registry);
+  SyncResult result;
+  result.changed = gridStale_;  // set by every added, destroyed or changed point
   if (gridStale_) uploadGrid(registry);
   gridStale_ = false;
-  return std::exchange(reused_, {});
+  result.reusedSlots = std::exchange(reused_, {});
+  return result;
 }
 
 void CachePointSet::uploadChanged(ecs::Registry& registry) {

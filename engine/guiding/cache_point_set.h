@@ -24,9 +24,13 @@ class CachePointSet {
   // Destroys every CachePoint entity; all slots become free.
   void clear(ecs::Registry& registry);
   // Frees the slots of points destroyed since the last sync, uploads the points added or
-  // changed, and rebuilds the grid when anything changed. Returns the slots freed by
-  // destroyed points that have been taken again since (their learned rows need a reset).
-  std::vector<uint32_t> sync(ecs::Registry& registry);
+  // changed, and rebuilds the grid when anything changed.
+  struct SyncResult {
+    bool changed = false;
+    // Slots freed by destroyed points and taken again since: their learned rows need a reset.
+    std::vector<uint32_t> reusedSlots;
+  };
+  SyncResult sync(ecs::Registry& registry);
 
   uint32_t count() const { return live_; }   // live points
   uint32_t slotEnd() const { return top_; }  // slots below this may be in use

@@ -89,7 +89,7 @@ void LearnedTables::reset(const GuidingSettings& settings) {
     // Light values start at the floor: until a light has shown a contribution at a point,
     // NEE picks it by power (the mixture), not uniformly among all lights.
     v_.recordReset(rec, settings.qFloor, 0, slots_);
-    recordTables(rec, slots_, settings);
+    recordLearning(rec, slots_, settings);
     rec.finish();
   });
 }
@@ -105,11 +105,6 @@ void LearnedTables::recordResetRows(gpu::PassRecorder& rec, std::span<const uint
 
 void LearnedTables::recordLearning(gpu::PassRecorder& rec, uint32_t rows,
                                    const GuidingSettings& settings) {
-  recordTables(rec, rows, settings);
-}
-
-void LearnedTables::recordTables(gpu::PassRecorder& rec, uint32_t rows,
-                                 const GuidingSettings& settings) {
   if (rows == 0) return;
   auto updateTable = [&](const char* name, const LearnedTable& table, bool cosine) {
     shared::TableUpdatePush push{rows * table.rowLength, table.rowLength,  settings.rows,

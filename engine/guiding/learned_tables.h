@@ -55,8 +55,6 @@ class LearnedTables {
   std::vector<float> readQ(uint32_t slot) const;
 
  private:
-  void recordTables(gpu::PassRecorder& rec, uint32_t rows, const GuidingSettings& settings);
-
   const gpu::Context& ctx_;
   gpu::PrefixSum scan_;
   gpu::ComputePipeline update_;

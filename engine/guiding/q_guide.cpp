@@ -77,14 +77,14 @@ void QGuide::acceptSpawns(ecs::Registry& registry) {
 }
 
 void QGuide::uploadPoints(ecs::Registry& registry) {
-  std::vector<uint32_t> reused = points_->sync(registry);
-  if (!reused.empty())
+  CachePointSet::SyncResult sync = points_->sync(registry);
+  if (!sync.reusedSlots.empty())
     ctx_.submitAndWait([&](VkCommandBuffer cmd) {
       gpu::PassRecorder rec(ctx_, cmd);
-      tables_.recordResetRows(rec, reused, settings_);
+      tables_.recordResetRows(rec, sync.reusedSlots, settings_);
       rec.finish();
     });
-  writeUniforms();
+  if (sync.changed) writeUniforms();  // the point count and the spawn switch follow the set
 }
 
 void QGuide::writeUniforms() {

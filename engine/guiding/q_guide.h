@@ -40,7 +40,8 @@ class QGuide final : public render::Guide {
   void generatePoints(ecs::Registry& registry, const render::GpuScene& scene);
   // After a frame's fence: points where its camera paths found none join the set.
   void acceptSpawns(ecs::Registry& registry);
-  // Upload phase: changed points and their grid to the GPU (fresh rows for reused slots).
+  // Upload phase: changed points and their grid to the GPU (fresh rows for reused slots);
+  // nothing when no point changed.
   void uploadPoints(ecs::Registry& registry);
   // Learn phase, after the frame's path tracing: the Q (and V) updates, then the CDFs.
   void recordLearning(gpu::PassRecorder& recorder);

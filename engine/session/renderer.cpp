@@ -23,6 +23,9 @@ Renderer::Renderer(const gpu::Context& ctx, const scene::SceneAsset& asset,
       nullGuide_(ctx),
       timer_(ctx) {
   scene_.update(world_.draw());
+  // The frame's resources live as long as the renderer; each frame only fills them in.
+  world_.registry().setResource<FrameView>();
+  world_.registry().setResource<FrameRecording>();
   registerSystems();
   if (guiding.enabled) setGuiding(guiding);
 }
@@ -80,7 +83,7 @@ const render::Guide& Renderer::activeGuide() const {
 
 void Renderer::update(float time, std::optional<render::CameraView> camera) {
   world_.advance(time);  // simulate, extract
-  world_.registry().setResource<FrameView>(FrameView{camera.value_or(world_.camera())});
+  world_.registry().resource<FrameView>().camera = camera.value_or(world_.camera());
   scheduler().runPhase(world_.registry(), ecs::Phase::Upload);
 }
 
@@ -88,11 +91,12 @@ void Renderer::record(VkCommandBuffer cmd) {
   timer_.reset(cmd);
   gpu::PassRecorder recorder(ctx_, cmd, &timer_);
   ecs::Registry& registry = world_.registry();
-  registry.setResource<FrameRecording>(FrameRecording{&recorder});
+  FrameRecording& recording = registry.resource<FrameRecording>();
+  recording.recorder = &recorder;
   for (ecs::Phase phase : {ecs::Phase::Trace, ecs::Phase::Learn, ecs::Phase::Present})
     scheduler().runPhase(registry, phase);
   recorder.finish();
-  registry.ctx().erase<FrameRecording>();  // the recorder ends here
+  recording.recorder = nullptr;  // the recorder ends here
 }
 
 FrameResult Renderer::collect() {

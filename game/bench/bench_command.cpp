@@ -215,11 +215,7 @@ std::function<int()> addBenchCommand(CLI::App& app, const CommonOptions& common)
       ->capture_default_str();
   cmd->add_option("--cache", args->cache,
                   "reference cache folder (default ~/.cache/qlight/references)");
-  std::map<std::string, bool> onOff{{"on", true}, {"off", false}};
-  cmd->add_option("--rr", args->render.russianRoulette, "the methods' Russian roulette: on|off")
-      ->transform(CLI::CheckedTransformer(onOff, CLI::ignore_case));
-  cmd->add_option("--max-depth", args->render.maxDepth, "bounces (the reference's too)")
-      ->check(CLI::Range(0, 1024));
+  addTracingOptions(*cmd, args->render);  // the reference keeps MIS + RR
   addGuidingOptions(*cmd, args->guiding, args->guidingCli);
   cmd->add_option("--traversal", args->traversal,
                   "include this bench_traversal_vs_embree --out JSON in the report");

@@ -30,11 +30,11 @@ TEST_F(CachePointSetTest, SlotsSurviveDestructionAndFreedSlotsAreReusedWithAFres
   ecs::Registry registry;
   guiding::CachePointSet set(ctx(), 4, 0.1f);
   for (float x : {0.0f, 1.0f, 2.0f}) ASSERT_TRUE(set.add(registry, pointAt(x)));
-  EXPECT_TRUE(set.sync(registry).empty());  // fresh slots need no reset
+  EXPECT_TRUE(set.sync(registry).reusedSlots.empty());  // fresh slots need no reset
 
   auto& storage = registry.storage<guiding::CachePoint>();
   registry.destroy(storage.entities().front());  // slot 0; the point in slot 2 moves to index 0
-  EXPECT_TRUE(set.sync(registry).empty());
+  EXPECT_TRUE(set.sync(registry).reusedSlots.empty());
   EXPECT_EQ(set.count(), 2u);
   std::vector<uint32_t> slots;
   for (const auto& p : storage.values()) slots.push_back(p.slot);
@@ -42,8 +42,9 @@ TEST_F(CachePointSetTest, SlotsSurviveDestructionAndFreedSlotsAreReusedWithAFres
 
   ASSERT_TRUE(set.add(registry, pointAt(5.0f)));  // takes the freed slot 0
   EXPECT_EQ(storage.values().back().slot, 0u);
-  EXPECT_EQ(set.sync(registry), (std::vector<uint32_t>{0}));  // its learned row must be reset
-  ASSERT_TRUE(set.add(registry, pointAt(7.0f)));              // then a never used slot
+  EXPECT_EQ(set.sync(registry).reusedSlots,
+            (std::vector<uint32_t>{0}));          // its learned row must be reset
+  ASSERT_TRUE(set.add(registry, pointAt(7.0f)));  // then a never used slot
   EXPECT_EQ(storage.values().back().slot, 3u);
   EXPECT_FALSE(set.add(registry, pointAt(9.0f)));  // the budget is full
   set.sync(registry);
