@@ -44,6 +44,12 @@ void addGuidingOptions(CLI::App& app, guiding::GuidingSettings& g, GuidingCli& c
   app.add_option("--points", g.pointBudget, "cache point budget");
   app.add_option("--select-probability", g.selectProbability,
                  "share of guided samples at diffuse vertices, 0..0.95 (BSDF sampling the rest)");
+  std::map<std::string, guiding::LearningTarget> targets{
+      {"returns", guiding::LearningTarget::Returns}, {"td", guiding::LearningTarget::TdStep}};
+  app.add_option("--learning-target", g.target,
+                 "returns (radiance each direction brought back, NEE included) or td (D&K's "
+                 "one-step target)")
+      ->transform(CLI::CheckedTransformer(targets, CLI::ignore_case));
   std::map<std::string, guiding::PointSet> sets{{"photon", guiding::PointSet::PhotonMap},
                                                 {"poisson", guiding::PointSet::PoissonAo}};
   app.add_option("--point-set", g.pointSet,

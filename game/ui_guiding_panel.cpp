@@ -15,6 +15,10 @@ GuidingPanelResult drawGuidingSection(guiding::GuidingSettings& s,
   ImGui::Checkbox("guided sampling", &s.enabled);
   ImGui::SameLine();
   ImGui::Checkbox("learn", &s.learn);
+  ImGui::SameLine();
+  bool returns = s.target == guiding::LearningTarget::Returns;
+  ImGui::Checkbox("from returns", &returns);  // else D&K's one-step TD target
+  s.target = returns ? guiding::LearningTarget::Returns : guiding::LearningTarget::TdStep;
   int rows = int(s.rows), cols = int(s.cols);
   ImGui::SliderInt("strata rows", &rows, 1, 32);
   ImGui::SliderInt("strata cols", &cols, 1, 32);
@@ -26,7 +30,8 @@ GuidingPanelResult drawGuidingSection(guiding::GuidingSettings& s,
   ImGui::SliderFloat("guided share", &s.selectProbability, 0.0f, 0.95f, "%.2f");
   ImGui::Checkbox("learned light selection", &s.lightLearning);
   ImGui::SliderFloat("light mix", &s.lightMix, 0.0f, 0.95f, "%.2f");
-  r.changed = s.enabled != before.enabled || s.learn != before.learn || s.rows != before.rows ||
+  r.changed = s.enabled != before.enabled || s.learn != before.learn ||
+              s.target != before.target || s.rows != before.rows ||
               s.cols != before.cols || s.alphaMin != before.alphaMin ||
               s.alphaMax != before.alphaMax || s.selectProbability != before.selectProbability ||
               s.lightLearning != before.lightLearning || s.lightMix != before.lightMix;

@@ -1,8 +1,10 @@
 #version 460
 // Wavefront pass 4: adds each path's radiance to the accumulation image
-// (rgb: sum, a: sample count) and its counters to the frame's stats.
+// (rgb: sum, a: sample count) and its counters to the frame's stats; with
+// learning from returns, the path's open records get their targets.
 #extension GL_GOOGLE_include_directive : require
 #include "include/path_common.glsl"
+#include "include/learning_returns.glsl"
 
 layout(binding = QL_BIND_ACCUM, rgba32f) uniform image2D uAccum;
 layout(binding = QL_BIND_STATS) buffer Stats { uint stats[]; };
@@ -23,6 +25,7 @@ void main() {
     flags = floatBitsToUint(radianceFlags.w);
     counters = floatBitsToUint(pathTexel(path, kPathTexelCounters));
     vec3 radiance = radianceFlags.xyz;
+    if (learningFromReturns()) flushReturnRecords(path, flags, luminance(radiance));
     if (any(isnan(radiance)) || any(isinf(radiance))) {
       radiance = vec3(0.0);
       invalid = 1u;

@@ -11,6 +11,7 @@
 #extension GL_GOOGLE_include_directive : require
 #include "include/path_common.glsl"
 #include "include/path_queue.glsl"
+#include "include/learning_returns.glsl"
 layout(binding = QL_BIND_QUEUE_OUT, scalar) writeonly buffer QueueOut { uint queueOut[]; };
 
 // The frame's estimator and guiding switches.
@@ -19,6 +20,7 @@ struct Switches {
   bool emitterHits;  // scattered rays that reach an emitter count
   bool mis;          // both, weighted by the power heuristic
   bool learn;        // record Q-learning targets
+  bool returns;      // ... from returns (include/learning_returns.glsl), else D&K's TD target
   bool guide;        // sample from the learned distributions
   bool usePoints;    // look up the vertex's cache point (for any of the above, or to spawn one)
 };
@@ -29,6 +31,7 @@ Switches frameSwitches() {
   sw.emitterHits = (frame.flags & kFlagEmitterHits) != 0u;
   sw.mis = (frame.flags & kFlagMis) != 0u && sw.nee && sw.emitterHits;
   sw.learn = (guiding.flags & kGuideLearn) != 0u;
+  sw.returns = learningFromReturns();
   sw.guide = (guiding.flags & kGuideSample) != 0u;
   sw.usePoints = kUseGuiding &&
                  (sw.learn || sw.guide || (guiding.flags & (kGuideLightLearn | kGuideSpawn)) != 0u);
@@ -91,7 +94,7 @@ void shadeEscaped(inout PathState st, Switches sw) {
     st.radiance += st.throughput * lights[last].emission * w;
     skyLuminance = luminance(lights[last].emission);
   }
-  if (kUseGuiding && sw.learn) recordQTarget(st.prevEntry, skyLuminance);
+  if (kUseGuiding && sw.learn && !sw.returns) recordQTarget(st.prevEntry, skyLuminance);
 }
 
 Surface hitSurface(PathState st) {
@@ -145,7 +148,7 @@ uint lookupCachePoint(inout PathState st, uint path, Vertex v, vec3 le, Switches
   uint point = sw.usePoints ? findCachePoint(v.s.position, v.s.geometricNormal) : kNoCachePoint;
   if (point != kNoCachePoint) {
     if (pc.bounce < frame.maxDepth) st.covered++;
-    if (sw.learn && st.prevEntry != kNoCachePoint)
+    if (sw.learn && !sw.returns && st.prevEntry != kNoCachePoint)
       recordQTarget(st.prevEntry,
                     luminance(le) + scatteredEstimate(point, v.bsdf, v.wo, -st.dir, v.ns));
   } else if (sw.usePoints && pc.bounce == 0u && (guiding.flags & kGuideSpawn) != 0u) {
@@ -273,6 +276,7 @@ void main() {
   Rng rng;
   rng.state = st.rng;
   Switches sw = frameSwitches();
+  if (sw.returns && pc.bounce > 0u) openReturnRecord(st, path, pc.bounce);
   bool alive = false;
   if (st.hitT < 0.0) {
     shadeEscaped(st, sw);

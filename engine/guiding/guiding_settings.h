@@ -10,6 +10,12 @@ enum class PointSet : uint32_t {
   PoissonAo,  // rejection distance from ambient occlusion, between min and max
 };
 
+// What Q learns from (issue 9, docs/guiding_log.md).
+enum class LearningTarget : uint32_t {
+  Returns,  // the radiance each direction brought back, NEE included, once the path is done
+  TdStep,   // D&K's one-step target: emission at the next vertex + what its Q says it scatters
+};
+
 struct GuidingSettings {
   bool enabled = true;  // --guiding q|off
   uint32_t rows = 8;    // strata: rows x cols, equal solid angle
@@ -34,6 +40,7 @@ struct GuidingSettings {
   uint32_t dartBounces = 4;
   bool spawnFromCamera = true;  // add points where camera paths land uncovered
   bool learn = true;            // update Q every frame (off: keep what was learned)
+  LearningTarget target = LearningTarget::Returns;  // --learning-target
   bool lightLearning = true;    // D&K section 4: learned light selection for NEE
   float lightMix = 0.5f;        // share of the learned light choice
   uint32_t seed = 1;

@@ -97,6 +97,7 @@ void QGuide::writeUniforms() {
   u.flags = 0;
   if (on) u.flags |= shared::kGuideSample;
   if (on && settings_.learn) u.flags |= shared::kGuideLearn;
+  if (settings_.target == LearningTarget::Returns) u.flags |= shared::kGuideLearnReturns;
   if (on && tables_.lights() > 0) u.flags |= shared::kGuideLightLearn;
   if (settings_.enabled && settings_.spawnFromCamera && count < settings_.pointBudget &&
       generator_.spawning())

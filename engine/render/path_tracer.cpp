@@ -27,7 +27,6 @@ PathTracer::PathTracer(const gpu::Context& ctx, const RenderSettings& settings)
     : ctx_(ctx),
       begin_(ctx, "pt_begin"),
       trace_(ctx, "pt_trace"),
-      end_(ctx, "pt_end"),
       queue_(ctx, "pt_queue"),
       queueState_(ctx, 2 * sizeof(shared::QueueState), "path.queues",
                   VK_BUFFER_USAGE_INDIRECT_BUFFER_BIT),
@@ -69,8 +68,8 @@ void PathTracer::resetAccumulation() {
   // must not repeat the previous frame's noise pattern.
 }
 
-const gpu::ComputePipeline& PathTracer::shadeVariant(const GpuScene& scene,
-                                                     const GuideFeatures& guide) {
+const gpu::ComputePipeline& PathTracer::specialized(const char* shader, const GpuScene& scene,
+                                                    const GuideFeatures& guide) {
   // Specialization constants of shaders/include/features.glsl.
   std::vector<uint32_t> features(shared::kSpecPathFeatureCount, 0);
   features[shared::kSpecUseTextures] = scene.hasTextures();
@@ -80,8 +79,8 @@ const gpu::ComputePipeline& PathTracer::shadeVariant(const GpuScene& scene,
   uint32_t key = 0;  // one bit per feature
   for (uint32_t id = shared::kSpecUseTextures; id < features.size(); ++id)
     key |= features[id] << (id - shared::kSpecUseTextures);
-  auto& slot = shadeVariants_[key];
-  if (!slot) slot = std::make_unique<gpu::ComputePipeline>(ctx_, "pt_shade", features);
+  auto& slot = variants_[{shader, key}];
+  if (!slot) slot = std::make_unique<gpu::ComputePipeline>(ctx_, shader, features);
   return *slot;
 }
 
@@ -175,7 +174,8 @@ void PathTracer::recordFrame(gpu::PassRecorder& rec, const GpuScene& scene,
         .dispatchIndirect(queueState_, (bounce & 1) * sizeof(shared::QueueState) +
                                            offsetof(shared::QueueState, groupsX));
   };
-  const gpu::ComputePipeline& shade = shadeVariant(scene, guide.features());
+  const gpu::ComputePipeline& shade = specialized("pt_shade", scene, guide.features());
+  const gpu::ComputePipeline& end = specialized("pt_end", scene, guide.features());
   // Wavefront: begin, then per bounce trace (shadow + extension rays) and
   // shade over the live paths only, a last trace for the final shadow rays, end.
   for (uint32_t s = 0; s < settings_.samplesPerFrame; ++s) {
@@ -193,7 +193,7 @@ void PathTracer::recordFrame(gpu::PassRecorder& rec, const GpuScene& scene,
     uint32_t last = settings_.maxDepth + 1;
     switchQueues(s, last, false);
     queued(pass("path.trace", trace_, s, last, 0), last);  // the last shadow rays
-    pass("path.end", end_, s, 0, 0)
+    pass("path.end", end, s, 0, 0)
         .write(QL_BIND_ACCUM, *accum_)
         .write(QL_BIND_STATS, stats_)
         .dispatchThreads(pathCount);

@@ -58,10 +58,12 @@ class PathTracer {
   const gpu::Context& ctx_;
   RenderSettings settings_;
   // The wavefront passes (shaders/pt_*.comp) and the path state between them.
-  gpu::ComputePipeline begin_, trace_, end_, queue_;
-  // pt_shade specialized per feature set (textures, guiding, light learning, non-triangle lights).
-  const gpu::ComputePipeline& shadeVariant(const GpuScene& scene, const GuideFeatures& guide);
-  std::map<uint32_t, std::unique_ptr<gpu::ComputePipeline>> shadeVariants_;
+  gpu::ComputePipeline begin_, trace_, queue_;
+  // pt_shade and pt_end specialized per feature set (textures, guiding, light learning,
+  // non-triangle lights), keyed by shader and feature bits.
+  const gpu::ComputePipeline& specialized(const char* shader, const GpuScene& scene,
+                                          const GuideFeatures& guide);
+  std::map<std::pair<std::string, uint32_t>, std::unique_ptr<gpu::ComputePipeline>> variants_;
   std::unique_ptr<gpu::Buffer> paths_;
   std::unique_ptr<gpu::BufferView> pathsView_;
   std::unique_ptr<gpu::Buffer> queueIds_[2];

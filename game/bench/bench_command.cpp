@@ -169,6 +169,8 @@ int runBench(BenchArgs a, const CommonOptions& common) {
         {"strata", std::to_string(a.guiding.rows) + "x" + std::to_string(a.guiding.cols)},
         {"select_probability", a.guiding.selectProbability},
         {"confidence_updates", a.guiding.confidenceUpdates},
+        {"learning_target",
+         a.guiding.target == guiding::LearningTarget::Returns ? "returns" : "td"},
         {"alpha_min", a.guiding.alphaMin},
         {"alpha_max", a.guiding.alphaMax},
         {"point_budget", a.guiding.pointBudget}}},

@@ -24,6 +24,9 @@ QL_CONST uint kGuideSample = 1u;      // sample directions from the learned dist
 QL_CONST uint kGuideLearn = 2u;       // update Q from the paths traced this frame
 QL_CONST uint kGuideLightLearn = 4u;  // learn light selection V(point, light) and use it for NEE
 QL_CONST uint kGuideSpawn = 8u;       // report camera hits with no cache point nearby
+// Learn Q from the radiance each vertex's direction actually received (NEE
+// included) once the path is done, instead of D&K's one-step TD target.
+QL_CONST uint kGuideLearnReturns = 16u;
 
 struct GuidingUniforms {
   uint rows;  // strata rows (equal-height zones in cos theta)

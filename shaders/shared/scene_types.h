@@ -174,7 +174,11 @@ QL_CONST uint kPathTexelShadowContribution = 6u;  // shadowContribution, prevEnt
 QL_CONST uint kPathTexelHit = 7u;                 // hitT, hitU, hitV, hitInstance
 QL_CONST uint kPathTexelShadowLearning = 8u;      // hitPrimitive, shadowTarget, -Point, -Light
 QL_CONST uint kPathTexelCounters = 9u;            // vertices, covered, rays, shadowRays
-QL_CONST uint kPathStateTexels = kPathTexelCounters + 1u;
+// Learning from returns (shaders/include/learning_returns.glsl): the last
+// kReturnRecords vertices' Q entry, radiance so far and throughput, a ring.
+QL_CONST uint kReturnRecords = 4u;
+QL_CONST uint kPathTexelReturnRecords = 10u;  // entry, luminance(radiance), luminance(throughput), 0
+QL_CONST uint kPathStateTexels = kPathTexelReturnRecords + kReturnRecords;
 
 // Per queue (two: the current and the next): its count and the indirect
 // dispatch that covers it. groupsX..Z are a VkDispatchIndirectCommand, at
