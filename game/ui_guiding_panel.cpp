@@ -30,9 +30,8 @@ GuidingPanelResult drawGuidingSection(guiding::GuidingSettings& s,
   ImGui::SliderFloat("guided share", &s.selectProbability, 0.0f, 0.95f, "%.2f");
   ImGui::Checkbox("learned light selection", &s.lightLearning);
   ImGui::SliderFloat("light mix", &s.lightMix, 0.0f, 0.95f, "%.2f");
-  r.changed = s.enabled != before.enabled || s.learn != before.learn ||
-              s.target != before.target || s.rows != before.rows ||
-              s.cols != before.cols || s.alphaMin != before.alphaMin ||
+  r.changed = s.enabled != before.enabled || s.learn != before.learn || s.target != before.target ||
+              s.rows != before.rows || s.cols != before.cols || s.alphaMin != before.alphaMin ||
               s.alphaMax != before.alphaMax || s.selectProbability != before.selectProbability ||
               s.lightLearning != before.lightLearning || s.lightMix != before.lightMix;
   r.regenerate = ImGui::Button("regenerate points");

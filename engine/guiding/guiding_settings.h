@@ -41,8 +41,8 @@ struct GuidingSettings {
   bool spawnFromCamera = true;  // add points where camera paths land uncovered
   bool learn = true;            // update Q every frame (off: keep what was learned)
   LearningTarget target = LearningTarget::Returns;  // --learning-target
-  bool lightLearning = true;    // D&K section 4: learned light selection for NEE
-  float lightMix = 0.5f;        // share of the learned light choice
+  bool lightLearning = true;  // D&K section 4: learned light selection for NEE
+  float lightMix = 0.5f;      // share of the learned light choice
   uint32_t seed = 1;
 
   uint32_t strata() const { return rows * cols; }
