@@ -1,16 +1,21 @@
 #version 460
-// The update pass: applies the frame's accumulated Q-learning targets of each
-// table entry at once (learning rate from its visit count), keeps the value
-// above the floor and finite, and writes the weight the CDF pass sums.
+// The learning pass of one table (Q or the light values V), one thread per row
+// (a point's strata or lights): applies the frame's accumulated targets of
+// each entry at once (learning rate from its visit count), keeps the value
+// above the floor and finite, and rebuilds the row's inclusive CDF of the
+// sampling weights. A row that received no target keeps its values and its
+// CDF and costs one read of its counts, so the pass costs what the frame's
+// paths touched, not the whole table. (A thread per row and no barriers: on
+// lavapipe a workgroup barrier costs more than the row's serial scan.)
 #extension GL_EXT_scalar_block_layout : require
 #extension GL_GOOGLE_include_directive : require
 #include "shared/guiding_types.h"
 #include "shared/strata.h"
 
-layout(local_size_x = 256) in;
+layout(local_size_x = QL_Q_UPDATE_GROUP_SIZE) in;
 layout(binding = QL_Q_UPDATE_BIND_VALUES, scalar) buffer Values { float values[]; };
 layout(binding = QL_Q_UPDATE_BIND_VISITS, scalar) buffer Visits { uint visits[]; };
-layout(binding = QL_Q_UPDATE_BIND_WEIGHTS, scalar) writeonly buffer Weights { float weights[]; };
+layout(binding = QL_Q_UPDATE_BIND_CDF, scalar) writeonly buffer Cdf { float cdf[]; };
 layout(binding = QL_Q_UPDATE_BIND_SUMS, scalar) buffer Sums { uint sums[]; };  // fixed point (lo, hi) pairs
 layout(binding = QL_Q_UPDATE_BIND_COUNTS, scalar) buffer Counts { uint counts[]; };
 // Updates per point (Q table only).
@@ -18,17 +23,32 @@ layout(binding = QL_Q_UPDATE_BIND_POINT_UPDATES, scalar) buffer PointUpdates { u
 layout(push_constant, scalar) uniform Push { TableUpdatePush pc; };
 
 void main() {
-  uint e = gl_GlobalInvocationID.x;
-  if (e >= pc.entries) return;
-  uint m = counts[e];
-  if (m > 0u && pc.cosineWeights != 0u) atomicAdd(pointUpdates[e / pc.segmentLength], m);
-  float sum = fixedSumToFloat(sums[2u * e], sums[2u * e + 1u]);
-  float next = updatedQ(values[e], sum, m, visits[e], pc.alphaMin, pc.alphaMax, pc.floorValue);
-  values[e] = next;
-  visits[e] += m;
-  sums[2u * e] = 0u;
-  sums[2u * e + 1u] = 0u;
-  counts[e] = 0u;
-  uint k = e % pc.segmentLength;
-  weights[e] = pc.cosineWeights != 0u ? guidedStratumWeight(next, k, pc.rows, pc.cols) : next;
+  // Rows beyond the dispatch limit of one dimension continue in y.
+  uint row = (gl_WorkGroupID.y * gl_NumWorkGroups.x + gl_WorkGroupID.x) * gl_WorkGroupSize.x +
+             gl_LocalInvocationID.x;
+  if (row >= pc.rowCount) return;
+  uint length = pc.segmentLength;
+  uint base = row * length;
+  uint targets = 0u;
+  for (uint k = 0u; k < length; ++k) targets += counts[base + k];
+  if (targets == 0u && pc.everyRow == 0u) return;
+  if (pc.cosineWeights != 0u && targets > 0u) pointUpdates[row] += targets;
+
+  float run = 0.0;
+  for (uint k = 0u; k < length; ++k) {
+    uint e = base + k;
+    uint m = counts[e];
+    float q = max(values[e], pc.floorValue);
+    if (m > 0u) {
+      float sum = fixedSumToFloat(sums[2u * e], sums[2u * e + 1u]);
+      q = updatedQ(values[e], sum, m, visits[e], pc.alphaMin, pc.alphaMax, pc.floorValue);
+      values[e] = q;
+      visits[e] += m;
+      sums[2u * e] = 0u;
+      sums[2u * e + 1u] = 0u;
+      counts[e] = 0u;
+    }
+    run += pc.cosineWeights != 0u ? guidedStratumWeight(q, k, pc.rows, pc.cols) : q;
+    cdf[e] = run;
+  }
 }

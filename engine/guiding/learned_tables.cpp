@@ -13,6 +13,8 @@ namespace {
 // are updated every kLightUpdateInterval frames. Targets keep accumulating in between and
 // the batched update applies them all at once.
 constexpr uint32_t kLightUpdateInterval = 4;
+// Workgroups along x every Vulkan device supports; more rows continue in y.
+constexpr uint32_t kMaxGroupsX = 65535;
 
 uint32_t floatBits(float f) {
   uint32_t u;
@@ -67,8 +69,7 @@ uint64_t LearnedTables::memoryBytes() const {
   return q_.memoryBytes() + v_.memoryBytes() + pointUpdates_->size();
 }
 
-LearnedTables::LearnedTables(const gpu::Context& ctx)
-    : ctx_(ctx), scan_(ctx), update_(ctx, "q_update") {}
+LearnedTables::LearnedTables(const gpu::Context& ctx) : ctx_(ctx), update_(ctx, "q_update") {}
 
 void LearnedTables::allocate(uint32_t slots, uint32_t strata, uint32_t lights) {
   slots_ = slots;
@@ -80,8 +81,8 @@ void LearnedTables::allocate(uint32_t slots, uint32_t strata, uint32_t lights) {
 }
 
 void LearnedTables::reset(const GuidingSettings& settings) {
-  // Uniform Q (cosine sampling), no visits; the update pass with no targets then writes
-  // the CDF weights, and the scan the CDFs, for every slot.
+  // Uniform Q (cosine sampling), no visits; the update pass over every row, with no
+  // targets, then writes every slot's CDF.
   ctx_.submitAndWait([&](VkCommandBuffer cmd) {
     gpu::PassRecorder rec(ctx_, cmd);
     q_.recordReset(rec, settings.initialQ, 0, slots_);
@@ -89,43 +90,55 @@ void LearnedTables::reset(const GuidingSettings& settings) {
     // Light values start at the floor: until a light has shown a contribution at a point,
     // NEE picks it by power (the mixture), not uniformly among all lights.
     v_.recordReset(rec, settings.qFloor, 0, slots_);
-    recordLearning(rec, slots_, settings);
+    recordUpdate(rec, "guiding.q_update", q_, slots_, true, true, settings);
+    if (lights_ > 0) recordUpdate(rec, "guiding.v_update", v_, slots_, false, true, settings);
     rec.finish();
   });
 }
 
 void LearnedTables::recordResetRows(gpu::PassRecorder& rec, std::span<const uint32_t> slots,
-                                    const GuidingSettings& settings) const {
+                                    uint32_t rows, const GuidingSettings& settings) {
+  if (slots.empty()) return;
   for (uint32_t slot : slots) {
     q_.recordReset(rec, settings.initialQ, slot, 1);
     if (lights_ > 0) v_.recordReset(rec, settings.qFloor, slot, 1);
     rec.fill("guiding.reset", *pointUpdates_, 0, uint64_t(slot) * 4, 4);
   }
+  recordUpdate(rec, "guiding.q_cdf", q_, rows, true, true, settings);
+  if (lights_ > 0) recordUpdate(rec, "guiding.v_cdf", v_, rows, false, true, settings);
+}
+
+void LearnedTables::recordUpdate(gpu::PassRecorder& rec, const char* name,
+                                 const LearnedTable& table, uint32_t rows, bool cosineWeights,
+                                 bool everyRow, const GuidingSettings& settings) {
+  if (rows == 0 || table.rowLength == 0) return;
+  shared::TableUpdatePush push{};
+  push.rowCount = rows;
+  push.segmentLength = table.rowLength;
+  push.rows = settings.rows;
+  push.cols = settings.cols;
+  push.cosineWeights = cosineWeights ? 1u : 0u;
+  push.alphaMin = settings.alphaMin;
+  push.alphaMax = settings.alphaMax;
+  push.floorValue = settings.qFloor;
+  push.everyRow = everyRow ? 1u : 0u;
+  const uint32_t groups = (rows + QL_Q_UPDATE_GROUP_SIZE - 1) / QL_Q_UPDATE_GROUP_SIZE;
+  rec.pass(name, update_)
+      .write(QL_Q_UPDATE_BIND_VALUES, *table.values)
+      .write(QL_Q_UPDATE_BIND_VISITS, *table.visits)
+      .write(QL_Q_UPDATE_BIND_CDF, *table.cdf)
+      .write(QL_Q_UPDATE_BIND_SUMS, *table.sums)
+      .write(QL_Q_UPDATE_BIND_COUNTS, *table.counts)
+      .write(QL_Q_UPDATE_BIND_POINT_UPDATES, *pointUpdates_)
+      .push(push)
+      .dispatch(std::min(groups, kMaxGroupsX), (groups + kMaxGroupsX - 1) / kMaxGroupsX);
 }
 
 void LearnedTables::recordLearning(gpu::PassRecorder& rec, uint32_t rows,
                                    const GuidingSettings& settings) {
-  if (rows == 0) return;
-  auto updateTable = [&](const char* name, const LearnedTable& table, bool cosine) {
-    shared::TableUpdatePush push{rows * table.rowLength, table.rowLength,  settings.rows,
-                                 settings.cols,          cosine ? 1u : 0u, settings.alphaMin,
-                                 settings.alphaMax,      settings.qFloor};
-    rec.pass(name, update_)
-        .write(QL_Q_UPDATE_BIND_VALUES, *table.values)
-        .write(QL_Q_UPDATE_BIND_VISITS, *table.visits)
-        .write(QL_Q_UPDATE_BIND_WEIGHTS, *table.cdf)
-        .write(QL_Q_UPDATE_BIND_SUMS, *table.sums)
-        .write(QL_Q_UPDATE_BIND_COUNTS, *table.counts)
-        .write(QL_Q_UPDATE_BIND_POINT_UPDATES, *pointUpdates_)
-        .push(push)
-        .dispatchThreads(push.entries);
-  };
-  updateTable("guiding.q_update", q_, true);
-  scan_.scanSegments(rec, *q_.cdf, rows, q_.rowLength);
-  if (lights_ > 0 && lightFrame_++ % kLightUpdateInterval == 0) {
-    updateTable("guiding.v_update", v_, false);
-    scan_.scanSegments(rec, *v_.cdf, rows, lights_);
-  }
+  recordUpdate(rec, "guiding.q_update", q_, rows, true, false, settings);
+  if (lights_ > 0 && lightFrame_++ % kLightUpdateInterval == 0)
+    recordUpdate(rec, "guiding.v_update", v_, rows, false, false, settings);
 }
 
 std::vector<float> LearnedTables::readQ(uint32_t slot) const {

@@ -3,7 +3,8 @@
 // lights (Dahm & Keller section 4), each with visit counts, the CDF the path
 // passes sample, and the frame's target sums (64-bit fixed point, so the order
 // of the atomics does not matter); and the Q updates each point has received
-// (its confidence). The update and CDF passes run after each frame's tracing.
+// (its confidence). The learning pass (shaders/q_update.comp: the update and the
+// CDF of each row that received targets) runs after each frame's tracing.
 #pragma once
 #include <memory>
 #include <span>
@@ -12,7 +13,6 @@
 
 #include "engine/gpu/compute_pipeline.h"
 #include "engine/gpu/pass_recorder.h"
-#include "engine/gpu/prefix_sum.h"
 #include "engine/guiding/guiding_settings.h"
 
 namespace qlight::guiding {
@@ -39,11 +39,12 @@ class LearnedTables {
   // Every row back to the start (uniform Q, V at the floor), with valid CDFs: points
   // added later start from a valid distribution without a learning pass of their own.
   void reset(const GuidingSettings& settings);
-  // The rows of slots a new point took over from a destroyed one.
-  void recordResetRows(gpu::PassRecorder& rec, std::span<const uint32_t> slots,
-                       const GuidingSettings& settings) const;
+  // The rows of slots a new point took over from a destroyed one, with their CDFs (the
+  // first `rows` rows are rebuilt; none of them has targets pending between frames).
+  void recordResetRows(gpu::PassRecorder& rec, std::span<const uint32_t> slots, uint32_t rows,
+                       const GuidingSettings& settings);
   // After the frame's tracing: the frame's targets applied to the first `rows` rows
-  // (D&K eq. 5 with the batched learning rate), then their CDFs.
+  // (D&K eq. 5 with the batched learning rate), and the CDFs of the rows that had any.
   void recordLearning(gpu::PassRecorder& rec, uint32_t rows, const GuidingSettings& settings);
 
   uint32_t lights() const { return lights_; }
@@ -55,8 +56,12 @@ class LearnedTables {
   std::vector<float> readQ(uint32_t slot) const;
 
  private:
+  // everyRow: also the rows without targets (their CDFs after a reset).
+  void recordUpdate(gpu::PassRecorder& rec, const char* name, const LearnedTable& table,
+                    uint32_t rows, bool cosineWeights, bool everyRow,
+                    const GuidingSettings& settings);
+
   const gpu::Context& ctx_;
-  gpu::PrefixSum scan_;
   gpu::ComputePipeline update_;
   LearnedTable q_, v_;
   std::unique_ptr<gpu::Buffer> pointUpdates_;

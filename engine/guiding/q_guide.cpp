@@ -2,8 +2,8 @@
 
 #include <cstdio>
 
-#include "engine/gpu/prefix_sum.h"
 #include "engine/guiding/guide_bindings.h"
+#include "shaders/shared/strata.h"
 
 namespace qlight::guiding {
 namespace {
@@ -13,7 +13,7 @@ constexpr uint64_t kMaxLightEntries = 4u << 20;  // points x lights for light le
 // Lights with learned values: all of them when the table fits, else none (with a message).
 uint32_t learnedLightCount(const GuidingSettings& s, uint32_t sceneLights) {
   if (!s.lightLearning || sceneLights <= 1) return 0;
-  if (sceneLights <= gpu::PrefixSum::kMaxSegmentLength &&
+  if (sceneLights <= shared::kMaxStrata &&  // a row of the learning pass, like the strata
       uint64_t(sceneLights) * s.pointBudget <= kMaxLightEntries)
     return sceneLights;
   std::fprintf(stderr,
@@ -81,7 +81,7 @@ void QGuide::uploadPoints(ecs::Registry& registry) {
   if (!sync.reusedSlots.empty())
     ctx_.submitAndWait([&](VkCommandBuffer cmd) {
       gpu::PassRecorder rec(ctx_, cmd);
-      tables_.recordResetRows(rec, sync.reusedSlots, settings_);
+      tables_.recordResetRows(rec, sync.reusedSlots, points_->slotEnd(), settings_);
       rec.finish();
     });
   if (sync.changed) writeUniforms();  // the point count and the spawn switch follow the set

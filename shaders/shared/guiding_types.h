@@ -59,26 +59,32 @@ QL_FN uint gridCellHash(ivec3 c, uint hashSize) {
 }
 
 // Bindings and push constants of q_update.comp (used for Q and for the light
-// values V): one table's values, visit counts, CDF weights (the output) and
-// fixed-point target sums and counts, and the per-point update counts.
+// values V): one table's values, visit counts, CDFs (the output) and
+// fixed-point target sums and counts, and the per-point update counts. One
+// thread per row (a point's strata or lights): it applies the row's targets
+// and rebuilds the row's CDF, and skips rows that received none.
 #define QL_Q_UPDATE_BIND_VALUES 0
 #define QL_Q_UPDATE_BIND_VISITS 1
-#define QL_Q_UPDATE_BIND_WEIGHTS 2
+#define QL_Q_UPDATE_BIND_CDF 2
 #define QL_Q_UPDATE_BIND_SUMS 3
 #define QL_Q_UPDATE_BIND_COUNTS 4
 #define QL_Q_UPDATE_BIND_POINT_UPDATES 5
+#define QL_Q_UPDATE_GROUP_SIZE 64
 
 struct TableUpdatePush {
-  uint entries;
-  uint segmentLength;  // entries per cache point
+  uint rowCount;       // workgroups: one per row
+  uint segmentLength;  // entries per row (at most kMaxStrata)
   uint rows;           // strata rows and columns when cosineWeights is set
   uint cols;
-  uint cosineWeights;  // 1: CDF weights are Q_k cosInt_k (Q); 0: the values themselves (V)
+  uint cosineWeights;  // 1: CDF of Q_k cosInt_k (Q, counts its point's updates); 0: of the values
+                       // (V)
   float alphaMin;
   float alphaMax;
   float floorValue;
+  uint everyRow;  // 1: rebuild the CDF of rows without targets too (after a reset)
+  uint pad0, pad1, pad2;
 };
-QL_CHECK_SIZE(TableUpdatePush, 32);
+QL_CHECK_SIZE(TableUpdatePush, 48);
 
 // Push constants of guiding_darts.comp: light paths whose hits are candidate
 // points (written to QL_BIND_DART_CANDIDATES).

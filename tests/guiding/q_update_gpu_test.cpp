@@ -1,12 +1,12 @@
-// The GPU update and CDF passes on a synthetic table equal a CPU reference of
-// the formula (D&K eq. 5 with the batched learning rate) applied to the
-// fixed-point target sums, and the largest sum stays finite.
+// The GPU learning pass (update and CDF per row) on a synthetic table equals a
+// CPU reference of the formula (D&K eq. 5 with the batched learning rate)
+// applied to the fixed-point target sums; the largest sum stays finite; rows
+// without targets are left alone unless every row is asked for.
 #include <cmath>
 #include <limits>
 #include <random>
 
 #include "engine/gpu/pass_recorder.h"
-#include "engine/gpu/prefix_sum.h"
 #include "shaders/shared/guiding_types.h"
 #include "shaders/shared/strata.h"
 #include "tests/gpu/gpu_fixture.h"
@@ -27,7 +27,8 @@ TEST_F(QUpdateGpu, UpdateAndCdfMatchCpuReference) {
   for (uint32_t e = 0; e < n; ++e) {
     q[e] = u(rng);
     visits[e] = rng() % 5000;
-    counts[e] = e % 5 == 0 ? 0 : rng() % 40;
+    // Every 7th point receives no target at all: the pass skips its row.
+    counts[e] = e % 5 == 0 || (e / strata) % 7 == 3 ? 0 : rng() % 40;
     // The frame's targets as the shader sums them: 64-bit fixed point, 20 fraction bits.
     uint64_t fixed = uint64_t(double(counts[e]) * u(rng) * 3.0 * shared::kTargetScale);
     fixedSums[2 * e] = uint32_t(fixed);
@@ -42,28 +43,36 @@ TEST_F(QUpdateGpu, UpdateAndCdfMatchCpuReference) {
   gpu::Buffer bq(ctx(), n * 4, "q"), bv(ctx(), n * 4, "visits"), bc(ctx(), n * 4, "cdf"),
       bs(ctx(), n * 8, "sums"), bn(ctx(), n * 4, "counts"), bp(ctx(), points * 4, "pointUpdates");
   std::vector<uint32_t> noUpdates(points, 0);
+  const float kUntouched = -1.0f;  // CDF sentinel: rows the pass skips keep it
+  bc.upload<float>(ctx(), std::vector<float>(n, kUntouched));
   bp.upload<uint32_t>(ctx(), noUpdates);
   bq.upload<float>(ctx(), q);
   bv.upload<uint32_t>(ctx(), visits);
   bs.upload<uint32_t>(ctx(), fixedSums);
   bn.upload<uint32_t>(ctx(), counts);
   gpu::ComputePipeline update(ctx(), "q_update");
-  gpu::PrefixSum scan(ctx());
-  ctx().submitAndWait([&](VkCommandBuffer cmd) {
-    gpu::PassRecorder rec(ctx(), cmd);
-    shared::TableUpdatePush push{n, strata, rows, cols, 1, aMin, aMax, qFloor};
-    rec.pass("q_update", update)
-        .write(0, bq)
-        .write(1, bv)
-        .write(2, bc)
-        .write(3, bs)
-        .write(4, bn)
-        .write(5, bp)
-        .push(push)
-        .dispatchThreads(n);
-    scan.scanSegments(rec, bc, points, strata);
-    rec.finish();
-  });
+  auto learningPass = [&](uint32_t everyRow) {
+    ctx().submitAndWait([&](VkCommandBuffer cmd) {
+      gpu::PassRecorder rec(ctx(), cmd);
+      shared::TableUpdatePush push{points, strata, rows, cols, 1, aMin, aMax, qFloor, everyRow};
+      rec.pass("q_update", update)
+          .write(QL_Q_UPDATE_BIND_VALUES, bq)
+          .write(QL_Q_UPDATE_BIND_VISITS, bv)
+          .write(QL_Q_UPDATE_BIND_CDF, bc)
+          .write(QL_Q_UPDATE_BIND_SUMS, bs)
+          .write(QL_Q_UPDATE_BIND_COUNTS, bn)
+          .write(QL_Q_UPDATE_BIND_POINT_UPDATES, bp)
+          .push(push)
+          .dispatch((points + QL_Q_UPDATE_GROUP_SIZE - 1) / QL_Q_UPDATE_GROUP_SIZE);
+      rec.finish();
+    });
+  };
+  learningPass(0);
+  auto skipped = bc.read<float>(ctx());
+  for (uint32_t p = 3; p < points; p += 7)
+    for (uint32_t k = 0; k < strata; ++k)
+      ASSERT_EQ(skipped[p * strata + k], kUntouched) << "point " << p << " has no targets";
+  learningPass(1);  // nothing left to apply: only the skipped rows' CDFs are new
   auto gq = bq.read<float>(ctx());
   auto gv = bv.read<uint32_t>(ctx());
   auto gc = bc.read<float>(ctx());
