@@ -17,7 +17,7 @@ constexpr VkBufferUsageFlags kTexel = VK_BUFFER_USAGE_UNIFORM_TEXEL_BUFFER_BIT;
 
 CachePointSet::CachePointSet(const gpu::Context& ctx, uint32_t budget, float searchRadius)
     : ctx_(ctx), searchRadius_(searchRadius), used_(budget, 0), everUsed_(budget, 0) {
-  grid_.cellSize = searchRadius > 0.0f ? 2.0f * searchRadius : 1.0f;  // no points yet: any
+  grid_.cellSize = searchRadius > 0.0f ? searchRadius : 1.0f;  // no points yet: any
   grid_.hashSize = nextPowerOfTwo(std::max<uint32_t>(2 * budget, 1024));
   grid_.buckets.assign(grid_.hashSize + 1, 0);
   points_ = std::make_unique<gpu::Buffer>(
@@ -123,6 +123,12 @@ void CachePointSet::uploadGrid(ecs::Registry& registry) {
   for (const CachePoint& p : storage.values()) slots.push_back(p.slot);
   grid_ = buildPointGrid(storage.values(), grid_.cellSize, grid_.hashSize, slots);
   buckets_->upload(ctx_, grid_.buckets.data(), grid_.buckets.size() * 4);
+  if (grid_.points.size() * 4 > gridPoints_->size()) {  // points are listed in several cells
+    gridPointsView_.reset();
+    gridPoints_ = std::make_unique<gpu::Buffer>(ctx_, grid_.points.size() * 4 * 5 / 4,
+                                                "guiding.gridPoints", kTexel);
+    gridPointsView_ = std::make_unique<gpu::BufferView>(ctx_, *gridPoints_, VK_FORMAT_R32_UINT);
+  }
   if (!grid_.points.empty())
     gridPoints_->upload(ctx_, grid_.points.data(), grid_.points.size() * 4);
 }

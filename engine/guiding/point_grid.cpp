@@ -1,6 +1,8 @@
 #include "engine/guiding/point_grid.h"
 
+#include <cmath>
 #include <stdexcept>
+#include <utility>
 
 // The shader's search code, compiled for the CPU: its buffer reads go through
 // these per-thread pointers, set by findNearestPoint.
@@ -16,27 +18,47 @@ thread_local const uint32_t* tGridPoints = nullptr;
 
 namespace qlight::guiding {
 
-PointGrid buildPointGrid(std::span<const CachePoint> points, float cellSize, uint32_t hashSize,
-                         std::span<const uint32_t> ids) {
+PointGrid buildPointGrid(std::span<const CachePoint> points, float searchRadius,
+                         uint32_t hashSize, std::span<const uint32_t> ids) {
   if (hashSize == 0 || (hashSize & (hashSize - 1)) != 0)
     throw std::invalid_argument("grid hash size must be a power of two");
   if (!ids.empty() && ids.size() != points.size())
     throw std::invalid_argument("grid ids must match the points");
+  if (!(searchRadius > 0.0f) || !std::isfinite(searchRadius))
+    throw std::invalid_argument("grid search radius must be positive");
   PointGrid g;
-  g.cellSize = cellSize;
+  g.cellSize = searchRadius;
   g.hashSize = hashSize;
   g.buckets.assign(hashSize + 1, 0);
-  std::vector<uint32_t> bucketOf(points.size());
+  // (bucket, entry) of every cell within searchRadius of each point; a point's cells that
+  // share a bucket list it once. The margin covers a query's rounding into its cell.
+  const float reach = searchRadius * (1.0f + 1e-4f);
+  std::vector<std::pair<uint32_t, uint32_t>> entries;
+  entries.reserve(points.size() * 20);
   for (size_t i = 0; i < points.size(); ++i) {
-    glm::ivec3 cell(glm::floor(points[i].position / cellSize));
-    bucketOf[i] = shared::gridCellHash(cell, hashSize);
-    ++g.buckets[bucketOf[i] + 1];
+    const glm::vec3 p = points[i].position;
+    const glm::ivec3 lo(glm::floor((p - reach) / searchRadius));
+    const glm::ivec3 hi(glm::floor((p + reach) / searchRadius));
+    const size_t first = entries.size();
+    for (int z = lo.z; z <= hi.z; ++z)
+      for (int y = lo.y; y <= hi.y; ++y)
+        for (int x = lo.x; x <= hi.x; ++x) {
+          const glm::vec3 cellMin = glm::vec3(x, y, z) * searchRadius;
+          const glm::vec3 nearest = glm::clamp(p, cellMin, cellMin + searchRadius);
+          const glm::vec3 d = nearest - p;
+          if (glm::dot(d, d) >= reach * reach) continue;
+          const uint32_t bucket = shared::gridCellHash(glm::ivec3(x, y, z), hashSize);
+          bool listed = false;
+          for (size_t e = first; e < entries.size() && !listed; ++e)
+            listed = entries[e].first == bucket;
+          if (!listed) entries.emplace_back(bucket, ids.empty() ? uint32_t(i) : ids[i]);
+        }
   }
+  for (const auto& e : entries) ++g.buckets[e.first + 1];
   for (uint32_t b = 0; b < hashSize; ++b) g.buckets[b + 1] += g.buckets[b];
-  g.points.resize(points.size());
+  g.points.resize(entries.size());
   std::vector<uint32_t> cursor(g.buckets.begin(), g.buckets.end() - 1);
-  for (size_t i = 0; i < points.size(); ++i)
-    g.points[cursor[bucketOf[i]]++] = ids.empty() ? uint32_t(i) : ids[i];
+  for (const auto& e : entries) g.points[cursor[e.first]++] = e.second;
   return g;
 }
 

@@ -34,7 +34,7 @@ struct GuidingUniforms {
   uint pointCount;
   uint flags;
   float searchRadius;       // nearest-point search radius
-  float cellSize;           // hashed grid cell (>= 2 searchRadius, so 2x2x2 cells cover it)
+  float cellSize;           // hashed grid cell (searchRadius; lists the points within reach)
   uint hashSize;            // buckets (power of two)
   float selectProbability;  // chance of a guided sample (scaled by the diffuse share)
   float normalCosine;       // a point is compatible when dot(normals) >= this

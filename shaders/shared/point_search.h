@@ -9,26 +9,25 @@
 
 QL_BEGIN
 // The nearest point within searchRadius whose normal is compatible
-// (dot >= normalCosine), or kNoCachePoint. Cells are 2 x searchRadius wide,
-// so the 2x2x2 cells around p cover the whole search sphere.
+// (dot >= normalCosine), or kNoCachePoint. The grid lists in each cell every
+// point within searchRadius of some position in the cell
+// (engine/guiding/point_grid.cpp), so the cell holding p alone has all the
+// candidates: one bucket to visit, and cells of searchRadius keep the list short.
 QL_FN uint findNearestCachePoint(vec3 p, vec3 n, float cellSize, uint hashSize, float searchRadius,
                                  float normalCosine) {
-  vec3 g = p / cellSize - vec3(0.5f);
-  ivec3 base = ivec3(int(floor(g.x)), int(floor(g.y)), int(floor(g.z)));
+  vec3 g = p / cellSize;
+  uint h = gridCellHash(ivec3(int(floor(g.x)), int(floor(g.y)), int(floor(g.z))), hashSize);
   float best = searchRadius * searchRadius;
   uint bestIndex = kNoCachePoint;
-  for (int i = 0; i < 8; ++i) {
-    uint h = gridCellHash(base + ivec3(i & 1, (i >> 1) & 1, (i >> 2) & 1), hashSize);
-    uint end = QL_GRID_BUCKET_AT(h + 1u);
-    for (uint j = QL_GRID_BUCKET_AT(h); j < end; ++j) {
-      uint index = QL_GRID_POINT_AT(j);
-      GpuCachePoint cp = QL_POINT_AT(index);
-      vec3 d = cp.position - p;
-      float d2 = dot(d, d);
-      if (d2 < best && dot(cp.normal, n) >= normalCosine) {
-        best = d2;
-        bestIndex = index;
-      }
+  uint end = QL_GRID_BUCKET_AT(h + 1u);
+  for (uint j = QL_GRID_BUCKET_AT(h); j < end; ++j) {
+    uint index = QL_GRID_POINT_AT(j);
+    GpuCachePoint cp = QL_POINT_AT(index);
+    vec3 d = cp.position - p;
+    float d2 = dot(d, d);
+    if (d2 < best && dot(cp.normal, n) >= normalCosine) {
+      best = d2;
+      bestIndex = index;
     }
   }
   return bestIndex;

@@ -21,7 +21,7 @@ TEST(PointSearch, GridSearchEqualsBruteForce) {
   for (float radius : {0.05f, 0.3f, 1.0f}) {
     std::vector<CachePoint> points(3000);
     for (auto& p : points) p = {glm::vec3(u(rng), u(rng), u(rng)), 0.0f, randomUnit(rng), 0};
-    PointGrid grid = buildPointGrid(points, 2.0f * radius, 4096);
+    PointGrid grid = buildPointGrid(points, radius, 4096);
     for (int q = 0; q < 3000; ++q) {
       glm::vec3 x(u(rng), u(rng), u(rng));
       glm::vec3 n = randomUnit(rng);
@@ -43,7 +43,7 @@ TEST(PointSearch, GridSearchEqualsBruteForce) {
 TEST(PointSearch, WorksAcrossNegativeCoordinatesAndTinyHashTables) {
   std::vector<CachePoint> points = {{glm::vec3(-0.01f, -5.0f, 0.0f), 0, glm::vec3(0, 1, 0), 0},
                                     {glm::vec3(0.01f, -5.0f, 0.0f), 0, glm::vec3(0, 1, 0), 0}};
-  PointGrid grid = buildPointGrid(points, 0.2f, 1);  // every cell in one bucket
+  PointGrid grid = buildPointGrid(points, 0.1f, 1);  // every cell in one bucket
   EXPECT_EQ(findNearestPoint(grid, points, glm::vec3(-0.02f, -5.0f, 0.0f), glm::vec3(0, 1, 0), 0.1f,
                              0.7f),
             0u);
@@ -54,7 +54,8 @@ TEST(PointSearch, WorksAcrossNegativeCoordinatesAndTinyHashTables) {
   EXPECT_EQ(findNearestPoint(grid, points, glm::vec3(0.02f, -5.0f, 0.0f), glm::vec3(0, -1, 0), 0.1f,
                              0.7f),
             shared::kNoCachePoint);
-  EXPECT_THROW(buildPointGrid(points, 0.2f, 3), std::invalid_argument);
+  EXPECT_THROW(buildPointGrid(points, 0.1f, 3), std::invalid_argument);
+  EXPECT_THROW(buildPointGrid(points, 0.0f, 4), std::invalid_argument);
 }
 
 TEST(PointAcceptance, NoTwoCompatiblePointsCloserThanTheRejectionDistance) {
