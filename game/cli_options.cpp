@@ -41,9 +41,12 @@ void addGuidingOptions(CLI::App& app, guiding::GuidingSettings& g, GuidingCli& c
   app.add_option("--strata", cli.strata, "hemisphere strata RxC, e.g. 8x8 or 16x8");
   app.add_option("--alpha-min", g.alphaMin, "learning rate floor (keeps tracking moving lights)");
   app.add_option("--alpha-max", g.alphaMax, "learning rate ceiling");
-  app.add_option("--points", g.pointBudget, "cache point budget");
+  app.add_option("--points", g.pointBudget,
+                 "cache point budget (default 0: one point per 8 paths per frame, 256..16384)");
   app.add_option("--select-probability", g.selectProbability,
                  "share of guided samples at diffuse vertices, 0..0.95 (BSDF sampling the rest)");
+  app.add_option("--confidence-updates", g.confidenceUpdates,
+                 "Q updates per stratum before a point guides at the full share (0: at once)");
   std::map<std::string, guiding::LearningTarget> targets{
       {"returns", guiding::LearningTarget::Returns}, {"td", guiding::LearningTarget::TdStep}};
   app.add_option("--learning-target", g.target,

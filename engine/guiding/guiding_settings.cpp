@@ -1,5 +1,6 @@
 #include "engine/guiding/guiding_settings.h"
 
+#include <algorithm>
 #include <cmath>
 #include <stdexcept>
 
@@ -20,16 +21,24 @@ void validate(const GuidingSettings& s) {
     throw std::invalid_argument(
         "guided selection probability must be in [0, 0.95] (BSDF sampling keeps the rest)");
   if (!finite(s.qFloor) || s.qFloor <= 0) throw std::invalid_argument("Q floor must be positive");
-  if (s.pointBudget == 0 || s.pointBudget > (1u << 20))
-    throw std::invalid_argument("point budget must be 1..1048576");
+  if (s.pointBudget > (1u << 20))
+    throw std::invalid_argument("point budget must be 1..1048576 (0: from the frame's paths)");
   if (!finite(s.rejectionMin) || !finite(s.rejectionMax) || s.rejectionMin < 0 ||
       s.rejectionMax < 0 || (s.rejectionMax > 0 && s.rejectionMax < s.rejectionMin))
     throw std::invalid_argument("rejection distances must be >= 0 with max >= min");
   if (!finite(s.lightMix) || s.lightMix < 0 || s.lightMix > 0.95f)
     throw std::invalid_argument(
         "light mix must be in [0, 0.95] (power-based choice keeps the rest)");
+  if (!finite(s.confidenceUpdates) || s.confidenceUpdates < 0 || s.confidenceUpdates > 1e6f)
+    throw std::invalid_argument("confidence updates must be in [0, 1e6]");
   if (s.dartBounces == 0 || s.dartBounces > 64)
     throw std::invalid_argument("dart bounces must be 1..64");
+}
+
+uint32_t resolvedPointBudget(const GuidingSettings& s, uint64_t pathsPerFrame) {
+  if (s.pointBudget > 0) return s.pointBudget;
+  return uint32_t(
+      std::clamp<uint64_t>(pathsPerFrame / kPathsPerPoint, kMinAutoPoints, kMaxAutoPoints));
 }
 
 void parseStrata(const std::string& text, GuidingSettings& s) {

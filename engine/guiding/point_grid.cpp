@@ -18,8 +18,8 @@ thread_local const uint32_t* tGridPoints = nullptr;
 
 namespace qlight::guiding {
 
-PointGrid buildPointGrid(std::span<const CachePoint> points, float searchRadius,
-                         uint32_t hashSize, std::span<const uint32_t> ids) {
+PointGrid buildPointGrid(std::span<const CachePoint> points, float searchRadius, uint32_t hashSize,
+                         std::span<const uint32_t> ids) {
   if (hashSize == 0 || (hashSize & (hashSize - 1)) != 0)
     throw std::invalid_argument("grid hash size must be a power of two");
   if (!ids.empty() && ids.size() != points.size())

@@ -20,8 +20,8 @@ struct PointGrid {
 
 // The grid's entries are ids[i] for points[i] when ids are given (the points' table slots),
 // else the index i.
-PointGrid buildPointGrid(std::span<const CachePoint> points, float searchRadius,
-                         uint32_t hashSize, std::span<const uint32_t> ids = {});
+PointGrid buildPointGrid(std::span<const CachePoint> points, float searchRadius, uint32_t hashSize,
+                         std::span<const uint32_t> ids = {});
 
 // The same search as guiding.glsl's findCachePoint (tests compare against brute force);
 // `points` indexed by the grid's entries.

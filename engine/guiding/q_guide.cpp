@@ -1,6 +1,7 @@
 #include "engine/guiding/q_guide.h"
 
 #include <cstdio>
+#include <stdexcept>
 
 #include "engine/guiding/guide_bindings.h"
 #include "shaders/shared/strata.h"
@@ -32,6 +33,8 @@ QGuide::QGuide(const gpu::Context& ctx, const GuidingSettings& settings)
       uniforms_(ctx, sizeof(shared::GuidingUniforms), "guiding.uniforms", 0,
                 gpu::MemoryUse::HostVisible) {
   validate(settings_);
+  if (settings_.pointBudget == 0)  // the owner knows the frame: resolvedPointBudget
+    throw std::invalid_argument("QGuide needs a resolved point budget");
   // Bindable before the first generatePoints: an empty set and tables, everything off.
   points_ = std::make_unique<CachePointSet>(ctx_, settings_.pointBudget, 0.0f);
   tables_.allocate(settings_.pointBudget, settings_.strata(), 0);
@@ -40,6 +43,7 @@ QGuide::QGuide(const gpu::Context& ctx, const GuidingSettings& settings)
 
 void QGuide::setSettings(const GuidingSettings& s) {
   validate(s);
+  if (s.pointBudget == 0) throw std::invalid_argument("QGuide needs a resolved point budget");
   GuidingSettings old = settings_;
   settings_ = s;
   bool pointsChanged = s.pointBudget != old.pointBudget || s.rejectionMin != old.rejectionMin ||

@@ -114,7 +114,11 @@ FrameResult Renderer::renderFrame(float time, std::optional<render::CameraView> 
   return collect();
 }
 
-void Renderer::setGuiding(const guiding::GuidingSettings& settings, bool regenerate) {
+void Renderer::setGuiding(const guiding::GuidingSettings& requested, bool regenerate) {
+  const render::RenderSettings& r = tracer_.settings();
+  guiding::GuidingSettings settings = requested;
+  settings.pointBudget =
+      guiding::resolvedPointBudget(requested, uint64_t(r.width) * r.height * r.samplesPerFrame);
   if (!qGuide_) {
     if (!settings.enabled) return;
     auto start = std::chrono::steady_clock::now();

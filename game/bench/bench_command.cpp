@@ -173,7 +173,8 @@ int runBench(BenchArgs a, const CommonOptions& common) {
          a.guiding.target == guiding::LearningTarget::Returns ? "returns" : "td"},
         {"alpha_min", a.guiding.alphaMin},
         {"alpha_max", a.guiding.alphaMax},
-        {"point_budget", a.guiding.pointBudget}}},
+        {"point_budget", a.guiding.pointBudget == 0 ? nlohmann::json("auto")
+                                                    : nlohmann::json(a.guiding.pointBudget)}}},
       {"scenes", sceneEntries},
       {"traversal", traversal}};
   session::writeJson(fs::path(a.out) / "bench.json", j);

@@ -117,7 +117,7 @@ TEST(RenderCli, AbsurdSettingsAreRejected) {
   for (const char* bad :
        {"--width 0", "--height -3", "--spp 0", "--max-depth 100000", "--exposure nan",
         "--exposure -1", "--estimator magic", "--rr maybe", "--time -1", "--strata 0x8",
-        "--strata 8by8", "--strata 64x64", "--alpha-min 0.5 --alpha-max 0.1", "--points 0",
+        "--strata 8by8", "--strata 64x64", "--alpha-min 0.5 --alpha-max 0.1", "--points 2000000",
         "--select-probability 1"}) {
     auto r = runQlight(base + bad);
     EXPECT_NE(r.exitCode, 0) << bad << "\n" << r.output;
