@@ -3,7 +3,7 @@
 // (a point's strata or lights): applies the frame's accumulated targets of
 // each entry at once (learning rate from its visit count), keeps the value
 // above the floor and finite, and rebuilds the row's inclusive CDF of the
-// sampling weights. A row that received no target keeps its values and its
+// sampling weights (unvisited entries weigh the mean of the visited ones). A row that received no target keeps its values and its
 // CDF and costs one read of its counts, so the pass costs what the frame's
 // paths touched, not the whole table. (A thread per row and no barriers: on
 // lavapipe a workgroup barrier costs more than the row's serial scan.)
@@ -34,20 +34,35 @@ void main() {
   if (targets == 0u && pc.everyRow == 0u) return;
   if (pc.cosineWeights != 0u && targets > 0u) pointUpdates[row] += targets;
 
-  float run = 0.0;
+  // The update; strata never visited keep their initial value but sample at the mean of
+  // the row's visited ones: an unexplored direction is as likely as an average one, not
+  // next to impossible (its BSDF-sampled paths would be fireflies).
+  float visitedSum = 0.0;
+  uint visited = 0u;
   for (uint k = 0u; k < length; ++k) {
     uint e = base + k;
     uint m = counts[e];
-    float q = max(values[e], pc.floorValue);
+    uint n = visits[e];
+    float q = values[e];
     if (m > 0u) {
       float sum = fixedSumToFloat(sums[2u * e], sums[2u * e + 1u]);
-      q = updatedQ(values[e], sum, m, visits[e], pc.alphaMin, pc.alphaMax, pc.floorValue);
+      q = updatedQ(q, sum, m, n, pc.alphaMin, pc.alphaMax, pc.floorValue);
       values[e] = q;
-      visits[e] += m;
+      visits[e] = n + m;
       sums[2u * e] = 0u;
       sums[2u * e + 1u] = 0u;
       counts[e] = 0u;
     }
+    if (n + m > 0u) {
+      visitedSum += max(q, pc.floorValue);
+      visited++;
+    }
+  }
+  float prior = visited > 0u ? visitedSum / float(visited) : 0.0;
+  float run = 0.0;
+  for (uint k = 0u; k < length; ++k) {
+    uint e = base + k;
+    float q = visited > 0u && visits[e] == 0u ? prior : max(values[e], pc.floorValue);
     run += pc.cosineWeights != 0u ? guidedStratumWeight(q, k, pc.rows, pc.cols) : q;
     cdf[e] = run;
   }

@@ -26,7 +26,7 @@ TEST_F(QUpdateGpu, UpdateAndCdfMatchCpuReference) {
   std::vector<uint32_t> visits(n), counts(n), fixedSums(2 * n);
   for (uint32_t e = 0; e < n; ++e) {
     q[e] = u(rng);
-    visits[e] = rng() % 5000;
+    visits[e] = e % 3 == 0 ? 0 : rng() % 5000;  // a third never visited before
     // Every 7th point receives no target at all: the pass skips its row.
     counts[e] = e % 5 == 0 || (e / strata) % 7 == 3 ? 0 : rng() % 40;
     // The frame's targets as the shader sums them: 64-bit fixed point, 20 fraction bits.
@@ -83,10 +83,21 @@ TEST_F(QUpdateGpu, UpdateAndCdfMatchCpuReference) {
     uint32_t pointTotal = 0;
     for (uint32_t k = 0; k < strata; ++k) pointTotal += counts[p * strata + k];
     ASSERT_EQ(gp[p], pointTotal) << "updates of point " << p;
+    // Strata never visited sample at the mean of the row's visited ones.
+    double visitedSum = 0;
+    uint32_t visitedCount = 0;
+    for (uint32_t k = 0; k < strata; ++k)
+      if (gv[p * strata + k] > 0) {
+        visitedSum += std::max(gq[p * strata + k], qFloor);
+        ++visitedCount;
+      }
     double cdf = 0;
     for (uint32_t k = 0; k < strata; ++k) {
       uint32_t e = p * strata + k;
-      float expected = shared::updatedQ(q[e], sums[e], counts[e], visits[e], aMin, aMax, qFloor);
+      // Entries without targets are left as they are (the CDF weighs them at least the floor).
+      float expected =
+          counts[e] ? shared::updatedQ(q[e], sums[e], counts[e], visits[e], aMin, aMax, qFloor)
+                    : q[e];
       ASSERT_TRUE(std::isfinite(gq[e])) << e;
       // GLSL's pow is exp2(y log2 x) with log2 good to 2^-21 absolute, so the
       // retained fraction after m updates is good to about m 2^-21 relative;
@@ -100,8 +111,9 @@ TEST_F(QUpdateGpu, UpdateAndCdfMatchCpuReference) {
       ASSERT_EQ(gs[2 * e], 0u);
       ASSERT_EQ(gs[2 * e + 1], 0u);
       ASSERT_EQ(gn[e], 0u);
-      cdf += double(gq[e]) *
-             shared::stratumCosineIntegral(k, rows, cols);  // the scan of what the update wrote
+      double weight = visitedCount > 0 && gv[e] == 0 ? visitedSum / visitedCount
+                                                     : std::max(double(gq[e]), double(qFloor));
+      cdf += weight * shared::stratumCosineIntegral(k, rows, cols);  // the scan of the update
       ASSERT_NEAR(gc[e], cdf, 1e-5 * cdf) << "cdf of entry " << e;
     }
   }
