@@ -22,6 +22,10 @@ layout(binding = QL_Q_UPDATE_BIND_COUNTS, scalar) buffer Counts { uint counts[];
 layout(binding = QL_Q_UPDATE_BIND_POINT_UPDATES, scalar) buffer PointUpdates { uint pointUpdates[]; };
 layout(push_constant, scalar) uniform Push { TableUpdatePush pc; };
 
+// Sampling weights shrink Q toward the row mean by kShrink pseudo-visits: a stratum
+// learned from a few noisy returns does not yet dominate (or vanish from) its row.
+const float kShrink = 4.0;
+
 void main() {
   // Rows beyond the dispatch limit of one dimension continue in y.
   uint row = (gl_WorkGroupID.y * gl_NumWorkGroups.x + gl_WorkGroupID.x) * gl_WorkGroupSize.x +
@@ -34,9 +38,10 @@ void main() {
   if (targets == 0u && pc.everyRow == 0u) return;
   if (pc.cosineWeights != 0u && targets > 0u) pointUpdates[row] += targets;
 
-  // The update; strata never visited keep their initial value but sample at the mean of
-  // the row's visited ones: an unexplored direction is as likely as an average one, not
-  // next to impossible (its BSDF-sampled paths would be fireflies).
+  // The update; then the sampling weights: a stratum's Q shrunk toward the mean of the
+  // row's visited strata (never visited: the mean itself), so an unexplored direction is as
+  // likely as an average one, not next to impossible (its BSDF-sampled paths would be
+  // fireflies).
   float visitedSum = 0.0;
   uint visited = 0u;
   for (uint k = 0u; k < length; ++k) {
@@ -62,7 +67,9 @@ void main() {
   float run = 0.0;
   for (uint k = 0u; k < length; ++k) {
     uint e = base + k;
-    float q = visited > 0u && visits[e] == 0u ? prior : max(values[e], pc.floorValue);
+    float n = float(visits[e]);
+    float q = visited > 0u ? (n * max(values[e], pc.floorValue) + kShrink * prior) / (n + kShrink)
+                           : max(values[e], pc.floorValue);
     run += pc.cosineWeights != 0u ? guidedStratumWeight(q, k, pc.rows, pc.cols) : q;
     cdf[e] = run;
   }

@@ -83,7 +83,7 @@ TEST_F(QUpdateGpu, UpdateAndCdfMatchCpuReference) {
     uint32_t pointTotal = 0;
     for (uint32_t k = 0; k < strata; ++k) pointTotal += counts[p * strata + k];
     ASSERT_EQ(gp[p], pointTotal) << "updates of point " << p;
-    // Strata never visited sample at the mean of the row's visited ones.
+    // Sampling weights: Q shrunk toward the mean of the row's visited strata.
     double visitedSum = 0;
     uint32_t visitedCount = 0;
     for (uint32_t k = 0; k < strata; ++k)
@@ -111,8 +111,9 @@ TEST_F(QUpdateGpu, UpdateAndCdfMatchCpuReference) {
       ASSERT_EQ(gs[2 * e], 0u);
       ASSERT_EQ(gs[2 * e + 1], 0u);
       ASSERT_EQ(gn[e], 0u);
-      double weight = visitedCount > 0 && gv[e] == 0 ? visitedSum / visitedCount
-                                                     : std::max(double(gq[e]), double(qFloor));
+      // Shrunk toward the row's visited mean by 4 pseudo-visits (q_update.comp).
+      double q = std::max(double(gq[e]), double(qFloor)), n = gv[e];
+      double weight = visitedCount > 0 ? (n * q + 4.0 * visitedSum / visitedCount) / (n + 4.0) : q;
       cdf += weight * shared::stratumCosineIntegral(k, rows, cols);  // the scan of the update
       ASSERT_NEAR(gc[e], cdf, 1e-5 * cdf) << "cdf of entry " << e;
     }
