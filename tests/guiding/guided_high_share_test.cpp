@@ -7,10 +7,8 @@
 //    guided pdf 5% off scales every bounce by ~1/1.05 and the image by ~15%
 //    (a = 0.8), hundreds of standard errors here;
 //  - on the door scene guided and unguided renders agree within their noise.
-#include <glm/gtc/matrix_transform.hpp>
-
-#include "engine/scene/procedural.h"
 #include "tests/render/agreement.h"
+#include "tests/render/furnace_scene.h"
 
 namespace qlight::test {
 namespace {
@@ -23,32 +21,6 @@ guiding::GuidingSettings highShare(uint32_t seed) {
   g.dartPaths = 8192;
   g.seed = seed;
   return g;
-}
-
-scene::SceneAsset whiteFurnace(float albedo, float emission) {
-  scene::SceneAsset s;
-  scene::MaterialAsset m;
-  m.baseColorFactor = glm::vec4(albedo, albedo, albedo, 1.0f);
-  m.metallicFactor = 0.0f;
-  m.specularFactor = 0.0f;
-  m.emissive = glm::vec3(emission);
-  s.materials.push_back(m);
-  scene::MeshAsset mesh;
-  scene::addBox(mesh, glm::mat4(1.0f), glm::vec3(1.0f, 0.6f, 1.4f), 0, /*facingInward=*/true);
-  s.meshes.push_back(mesh);
-  scene::NodeAsset box;
-  box.mesh = 0;
-  scene::addNode(s, box);
-  scene::CameraAsset cam;
-  cam.yfov = 1.2f;
-  s.cameras.push_back(cam);
-  scene::NodeAsset eye;
-  eye.camera = 0;
-  eye.local.translation = glm::vec3(0.3f, 0.1f, 0.5f);
-  eye.local.rotation = glm::angleAxis(0.7f, glm::normalize(glm::vec3(0.2f, 1.0f, 0.3f)));
-  scene::addNode(s, eye);
-  scene::refreshBounds(s);
-  return s;
 }
 
 class GuidedHighShare : public GpuTest {};

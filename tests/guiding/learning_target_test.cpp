@@ -115,6 +115,15 @@ StratumReference reference(uint32_t k, uint32_t rows, uint32_t cols,
   return r;
 }
 
+// 32x32 pixels, two bounces (the camera's vertex and the ceiling's), no Russian roulette.
+render::RenderSettings twoBounces(uint32_t samplesPerFrame) {
+  render::RenderSettings s = smallSettings(32, 32, 3);
+  s.samplesPerFrame = samplesPerFrame;
+  s.maxDepth = 2;
+  s.russianRoulette = false;
+  return s;
+}
+
 class LearningTarget : public GpuTest {
  protected:
   struct Learned {
@@ -125,10 +134,7 @@ class LearningTarget : public GpuTest {
 
   Learned learn(guiding::LearningTarget target, int frames) {
     scene::SceneAsset asset = floorCeilingPointLight();
-    render::RenderSettings s = smallSettings(32, 32, 3);
-    s.samplesPerFrame = 8;
-    s.maxDepth = 2;
-    s.russianRoulette = false;
+    render::RenderSettings s = twoBounces(8);
     guiding::GuidingSettings g;
     g.target = target;
     g.rows = kRows;
@@ -182,10 +188,7 @@ TEST_F(LearningTarget, ReturnsMatchTheCpuReferencePerStratum) {
 // the floor's albedo times the cosine-weighted mean return.
 TEST_F(LearningTarget, SceneRendersItsAnalyticValue) {
   scene::SceneAsset asset = floorCeilingPointLight();
-  render::RenderSettings s = smallSettings(32, 32, 3);
-  s.samplesPerFrame = 64;
-  s.maxDepth = 2;
-  s.russianRoulette = false;
+  render::RenderSettings s = twoBounces(64);
   guiding::GuidingSettings g;
   g.enabled = false;
   auto r = session::renderScene(ctx(), asset, s, 512, 0.0f, g);

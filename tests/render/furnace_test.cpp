@@ -2,39 +2,10 @@
 // the radiance everywhere is E / (1 - a) (the geometric series of bounces).
 // Checks the estimators end to end: emission, NEE, BSDF sampling, MIS weights
 // and Russian roulette must all be unbiased for the image to come out right.
-#include <glm/gtc/matrix_transform.hpp>
-
-#include "engine/scene/procedural.h"
-#include "tests/render/render_support.h"
+#include "tests/render/furnace_scene.h"
 
 namespace qlight::test {
 namespace {
-
-scene::SceneAsset furnace(float albedo, float emission) {
-  scene::SceneAsset s;
-  scene::MaterialAsset m;
-  m.baseColorFactor = glm::vec4(albedo, albedo, albedo, 1.0f);
-  m.metallicFactor = 0.0f;
-  m.specularFactor = 0.0f;  // exactly Lambertian
-  m.emissive = glm::vec3(emission);
-  s.materials.push_back(m);
-  scene::MeshAsset mesh;
-  scene::addBox(mesh, glm::mat4(1.0f), glm::vec3(1.0f, 0.7f, 1.3f), 0, /*facingInward=*/true);
-  s.meshes.push_back(mesh);
-  scene::NodeAsset box;
-  box.mesh = 0;
-  scene::addNode(s, box);
-  scene::CameraAsset cam;
-  cam.yfov = 1.2f;
-  s.cameras.push_back(cam);
-  scene::NodeAsset eye;
-  eye.camera = 0;
-  eye.local.translation = glm::vec3(0.2f, -0.1f, 0.6f);
-  eye.local.rotation = glm::angleAxis(0.4f, glm::normalize(glm::vec3(0.3f, 1.0f, 0.1f)));
-  scene::addNode(s, eye);
-  scene::refreshBounds(s);
-  return s;
-}
 
 struct FurnaceCase {
   float albedo;
@@ -46,7 +17,7 @@ class Furnace : public GpuTest, public ::testing::WithParamInterface<FurnaceCase
 
 TEST_P(Furnace, RadianceIsEmissionOverOneMinusAlbedo) {
   FurnaceCase c = GetParam();
-  scene::SceneAsset asset = furnace(c.albedo, c.emission);
+  scene::SceneAsset asset = whiteFurnace(c.albedo, c.emission);
   render::RenderSettings s = smallSettings(32, 32, 7);
   s.estimator = c.estimator;
   s.maxDepth = 1024;  // effectively unbounded: Russian roulette ends the paths
