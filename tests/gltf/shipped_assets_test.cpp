@@ -1,7 +1,8 @@
 // The scenes in assets/ (written by tools/gen_scenes): they load cleanly, are small, light
 // themselves with front-facing emitters, and have the properties they are shipped for
 // (the door scene's light is invisible from its camera, the animated light loops, the
-// many-lights room has over a hundred emitters). Visibility is checked by brute-force ray
+// many-lights room has over a hundred emitters; in the indirect-light benchmark scenes the
+// camera sees no directly lit point, or no light). Visibility is checked by brute-force ray
 // casting against every triangle.
 #include <gtest/gtest.h>
 
@@ -9,6 +10,9 @@
 #include <filesystem>
 #include <glm/gtc/quaternion.hpp>
 #include <optional>
+#include <string>
+#include <utility>
+#include <vector>
 
 #include "engine/gltf/gltf_loader.h"
 #include "engine/scene/animation.h"
@@ -20,6 +24,9 @@ namespace {
 const std::filesystem::path kAssets = std::filesystem::path(QLIGHT_SOURCE_DIR) / "assets";
 const char* const kShipped[] = {"cornell_box.gltf", "door_ajar.gltf", "animated_light.gltf",
                                 "many_lights.gltf"};
+// Benchmark scenes for guiding in hard indirect light; the furnished room is large, and the
+// glossy floor is the one material that is not Lambertian.
+const char* const kIndirect[] = {"corridor.gltf", "glossy_floor.gltf", "furnished_room.gltf"};
 
 struct Triangle {
   glm::dvec3 a, b, c;
@@ -42,10 +49,12 @@ std::vector<Triangle> worldTriangles(const SceneAsset& scene, float t) {
   return out;
 }
 
-// Nearest hit distance along origin + s * direction for s in (0, maxDistance), either side.
+// Nearest hit distance along origin + s * direction for s in (0, maxDistance), either side;
+// hitTriangle, when given, receives the triangle hit.
 std::optional<double> nearestHit(const std::vector<Triangle>& triangles, glm::dvec3 origin,
                                  glm::dvec3 direction, double maxDistance,
-                                 const Triangle* ignore = nullptr) {
+                                 const Triangle* ignore = nullptr,
+                                 const Triangle** hitTriangle = nullptr) {
   std::optional<double> best;
   for (const Triangle& tri : triangles) {
     if (&tri == ignore) continue;
@@ -60,7 +69,10 @@ std::optional<double> nearestHit(const std::vector<Triangle>& triangles, glm::dv
     const double v = glm::dot(direction, q) / det;
     if (v < 0.0 || u + v > 1.0) continue;
     const double dist = glm::dot(e2, q) / det;
-    if (dist > 1e-9 && dist < maxDistance && (!best || dist < *best)) best = dist;
+    if (dist > 1e-9 && dist < maxDistance && (!best || dist < *best)) {
+      best = dist;
+      if (hitTriangle) *hitTriangle = &tri;
+    }
   }
   return best;
 }
@@ -75,6 +87,105 @@ glm::dvec3 cameraPosition(const SceneAsset& scene) {
     if (scene.nodes[n].camera >= 0) return glm::dvec3(world[n][3]);
   ADD_FAILURE() << "no camera";
   return {};
+}
+
+// Points on a triangular grid over each emitter triangle, with the triangle they lie on.
+std::vector<std::pair<glm::dvec3, const Triangle*>> emitterPoints(
+    const SceneAsset& scene, const std::vector<Triangle>& triangles) {
+  std::vector<std::pair<glm::dvec3, const Triangle*>> out;
+  for (const Triangle& t : triangles) {
+    if (!isEmitter(scene, t)) continue;
+    for (int i = 0; i <= 10; ++i)
+      for (int j = 0; i + j <= 10; ++j)
+        out.push_back({t.a + (i / 10.0) * (t.b - t.a) + (j / 10.0) * (t.c - t.a), &t});
+  }
+  return out;
+}
+
+// How many emitter points the eye sees: in front of their emitter, nothing in between.
+size_t emitterPointsSeen(const SceneAsset& scene, const std::vector<Triangle>& triangles,
+                         glm::dvec3 eye) {
+  size_t seen = 0;
+  for (const auto& [p, t] : emitterPoints(scene, triangles)) {
+    const glm::dvec3 toPoint = p - eye;
+    const double distance = glm::length(toPoint);
+    const bool facesAway = glm::dot(t->normal(), -toPoint) <= 0.0;
+    seen +=
+        !facesAway && !nearestHit(triangles, eye, toPoint / distance, distance * (1.0 - 1e-6), t);
+  }
+  return seen;
+}
+
+// The surface points the camera sees through a cols x rows grid over its image (for which
+// keep is true), and how many of them some emitter point lights directly: each in front of
+// the other with nothing in between.
+struct DirectLight {
+  size_t seen = 0, lit = 0;
+};
+template <typename Keep>
+DirectLight directlyLitPointsSeen(const SceneAsset& scene, const std::vector<Triangle>& triangles,
+                                  Keep keep, int cols = 64, int rows = 36) {
+  const std::vector<glm::mat4> world = worldTransforms(scene, restPose(scene));
+  glm::dmat4 view(1.0);
+  const CameraAsset* camera = nullptr;
+  for (uint32_t n : nodesParentFirst(scene)) {
+    if (scene.nodes[n].camera < 0) continue;
+    view = glm::dmat4(world[n]);
+    camera = &scene.cameras[size_t(scene.nodes[n].camera)];
+  }
+  if (camera == nullptr) {
+    ADD_FAILURE() << "no camera";
+    return {};
+  }
+  const glm::dvec3 eye(view[3]), right(glm::normalize(glm::dvec3(view[0]))),
+      up(glm::normalize(glm::dvec3(view[1]))), forward(-glm::normalize(glm::dvec3(view[2])));
+  const double tanY = std::tan(0.5 * camera->yfov), tanX = tanY * camera->aspectRatio;
+  const auto lights = emitterPoints(scene, triangles);
+  DirectLight out;
+  for (int r = 0; r < rows; ++r) {
+    for (int c = 0; c < cols; ++c) {
+      const double sx = (2.0 * (c + 0.5) / cols - 1.0) * tanX;
+      const double sy = (1.0 - 2.0 * (r + 0.5) / rows) * tanY;
+      const glm::dvec3 dir = glm::normalize(forward + sx * right + sy * up);
+      const Triangle* surface = nullptr;
+      const std::optional<double> hit = nearestHit(triangles, eye, dir, 1e3, nullptr, &surface);
+      if (!hit || isEmitter(scene, *surface)) continue;
+      const glm::dvec3 p = eye + *hit * dir;
+      if (!keep(p)) continue;
+      ++out.seen;
+      glm::dvec3 n = surface->normal();
+      if (glm::dot(n, dir) > 0.0) n = -n;  // the side the camera sees
+      for (const auto& [q, light] : lights) {
+        const glm::dvec3 toLight = q - p;
+        const double distance = glm::length(toLight);
+        if (glm::dot(n, toLight) <= 0.0 || glm::dot(light->normal(), -toLight) <= 0.0) continue;
+        // Starting just off the surface, so its coplanar neighbors cannot shadow it.
+        if (!nearestHit(triangles, p + 1e-6 * n, toLight / distance, distance * (1.0 - 1e-6),
+                        surface)) {
+          ++out.lit;
+          break;
+        }
+      }
+    }
+  }
+  return out;
+}
+
+// Distance from the far jamb edge (x, z) to the nearest vertex of the node named "door".
+double doorGap(const SceneAsset& scene, float jambX, float jambZ) {
+  const std::vector<glm::mat4> world = worldTransforms(scene, restPose(scene));
+  double gap = 1e9;
+  bool foundDoor = false;
+  for (uint32_t n = 0; n < scene.nodes.size(); ++n) {
+    if (scene.nodes[n].name != "door") continue;
+    foundDoor = true;
+    for (const glm::vec3& p : scene.meshes[size_t(scene.nodes[n].mesh)].positions) {
+      const glm::vec3 w(world[n] * glm::vec4(p, 1.0f));
+      gap = std::min(gap, double(glm::length(glm::vec2(w.x - jambX, w.z - jambZ))));
+    }
+  }
+  EXPECT_TRUE(foundDoor);
+  return gap;
 }
 
 TEST(ShippedAssets, EachLoadsCleanlyIsSmallAndHasEmittersAndACamera) {
@@ -98,10 +209,37 @@ TEST(ShippedAssets, EachLoadsCleanlyIsSmallAndHasEmittersAndACamera) {
   }
 }
 
+TEST(ShippedAssets, IndirectLightScenesLoadCleanlyWithACamera) {
+  for (const char* name : kIndirect) {
+    SCOPED_TRACE(name);
+    const std::filesystem::path path = kAssets / name;
+    ASSERT_TRUE(std::filesystem::exists(path));
+    const bool large = std::string(name) == "furnished_room.gltf";
+    EXPECT_LT(std::filesystem::file_size(path), large ? 12u * 1024u * 1024u : 200u * 1024u);
+    const SceneAsset scene = loadGltf(path);
+    EXPECT_TRUE(scene.warnings.empty());
+    ASSERT_EQ(scene.cameras.size(), 1u);
+    EXPECT_NEAR(scene.cameras[0].aspectRatio, 16.0f / 9.0f, 1e-4f);
+    EXPECT_FALSE(scene.bounds.empty());
+    size_t emitters = 0;
+    for (const Triangle& t : worldTriangles(scene, 0.0f)) emitters += isEmitter(scene, t);
+    EXPECT_GE(emitters, 2u);
+    for (const MaterialAsset& m : scene.materials) {
+      EXPECT_EQ(m.metallicFactor, 0.0f) << m.name;
+      if (m.name != "glossy_floor") {
+        EXPECT_EQ(m.specularFactor, 0.0f) << m.name;
+      }
+      EXPECT_FALSE(m.doubleSided) << m.name;
+    }
+  }
+}
+
 // Every emitter faces into the scene: straight out of its front there is room (the nearest
 // surface is at least 20 cm away) and what it meets faces back towards it.
 TEST(ShippedAssets, EmittersFaceIntoTheRoom) {
-  for (const char* name : kShipped) {
+  std::vector<const char*> names(std::begin(kShipped), std::end(kShipped));
+  names.insert(names.end(), std::begin(kIndirect), std::end(kIndirect));
+  for (const char* name : names) {
     SCOPED_TRACE(name);
     const SceneAsset scene = loadGltf(kAssets / name);
     const std::vector<Triangle> triangles = worldTriangles(scene, 0.0f);
@@ -150,40 +288,74 @@ TEST(ShippedAssets, DoorAjarHidesItsLightFromTheCamera) {
   EXPECT_LE(triangles.size(), 400u);
   const glm::dvec3 eye = cameraPosition(scene);
   EXPECT_LT(eye.x, 4.0);  // room A
-  size_t samples = 0;
-  for (const Triangle& t : triangles) {
-    if (!isEmitter(scene, t)) continue;
-    EXPECT_GT(t.centroid().x, 4.1);  // room B
-    for (int i = 0; i <= 10; ++i) {
-      for (int j = 0; i + j <= 10; ++j) {
-        const double u = i / 10.0, v = j / 10.0;
-        const glm::dvec3 p = t.a + u * (t.b - t.a) + v * (t.c - t.a);
-        const glm::dvec3 toPoint = p - eye;
-        const double distance = glm::length(toPoint);
-        const bool facesAway = glm::dot(t.normal(), -toPoint) <= 0.0;
-        const std::optional<double> hit =
-            nearestHit(triangles, eye, toPoint / distance, distance * (1.0 - 1e-6), &t);
-        EXPECT_TRUE(facesAway || hit.has_value()) << "emitter point seen from the camera";
-        ++samples;
-      }
+  for (const Triangle& t : triangles)
+    if (isEmitter(scene, t)) {
+      EXPECT_GT(t.centroid().x, 4.1);  // room B
     }
-  }
-  EXPECT_GT(samples, 0u);
+  EXPECT_FALSE(emitterPoints(scene, triangles).empty());
+  EXPECT_EQ(emitterPointsSeen(scene, triangles, eye), 0u) << "emitter points seen from the camera";
 
   // The gap: the door's vertex nearest to the far jamb edge (x = 4, z = 1.6) is ~10 cm away.
-  const std::vector<glm::mat4> world = worldTransforms(scene, restPose(scene));
-  double gap = 1e9;
-  bool foundDoor = false;
-  for (uint32_t n = 0; n < scene.nodes.size(); ++n) {
-    if (scene.nodes[n].name != "door") continue;
-    foundDoor = true;
-    for (const glm::vec3& p : scene.meshes[size_t(scene.nodes[n].mesh)].positions) {
-      const glm::vec3 w(world[n] * glm::vec4(p, 1.0f));
-      gap = std::min(gap, double(glm::length(glm::vec2(w.x - 4.0f, w.z - 1.6f))));
+  EXPECT_NEAR(doorGap(scene, 4.0f, 1.6f), 0.10, 0.01);
+}
+
+// The corridor: the camera in leg A (x < 1.5, z > -6), the light in leg B (x > 1.5), and no
+// surface point the camera sees is lit directly; light reaches it around the corner.
+TEST(ShippedAssets, CorridorLightsWhatTheCameraSeesOnlyAroundTheCorner) {
+  const SceneAsset scene = loadGltf(kAssets / "corridor.gltf");
+  const std::vector<Triangle> triangles = worldTriangles(scene, 0.0f);
+  EXPECT_LT(triangles.size(), 300u);
+  const glm::dvec3 eye = cameraPosition(scene);
+  EXPECT_LT(eye.x, 1.5);
+  EXPECT_GT(eye.z, -6.0);
+  for (const Triangle& t : triangles)
+    if (isEmitter(scene, t)) {
+      EXPECT_GT(t.centroid().x, 3.0);
     }
+  const DirectLight direct =
+      directlyLitPointsSeen(scene, triangles, [](glm::dvec3) { return true; });
+  EXPECT_GT(direct.seen, 2000u);  // nearly every pixel sees a surface
+  EXPECT_EQ(direct.lit, 0u);
+}
+
+// The glossy floor: one glossy dielectric (room A's floor), the camera in room A, and no point
+// of room A it sees lit directly (the light faces away from the doorway).
+TEST(ShippedAssets, GlossyFloorRoomIsLitOnlyThroughTheDoorway) {
+  const SceneAsset scene = loadGltf(kAssets / "glossy_floor.gltf");
+  size_t glossy = 0;
+  for (const MaterialAsset& m : scene.materials) {
+    if (m.specularFactor == 0.0f) continue;
+    ++glossy;
+    EXPECT_EQ(m.specularFactor, 1.0f);
+    EXPECT_NEAR(m.roughnessFactor, 0.25f, 0.05f);
   }
-  EXPECT_TRUE(foundDoor);
-  EXPECT_NEAR(gap, 0.10, 0.01);
+  EXPECT_EQ(glossy, 1u);
+  const std::vector<Triangle> triangles = worldTriangles(scene, 0.0f);
+  EXPECT_LT(triangles.size(), 1000u);
+  const glm::dvec3 eye = cameraPosition(scene);
+  EXPECT_LT(eye.x, 5.0);  // room A
+  EXPECT_EQ(emitterPointsSeen(scene, triangles, eye), 0u);
+  const DirectLight direct =
+      directlyLitPointsSeen(scene, triangles, [](glm::dvec3 p) { return p.x < 5.0; });
+  EXPECT_GT(direct.seen, 1000u);
+  EXPECT_EQ(direct.lit, 0u);
+}
+
+// The furnished door-ajar pair: 150k-250k triangles, the light in room B hidden from the
+// camera in room A, the door open about 12 cm.
+TEST(ShippedAssets, FurnishedRoomIsDetailedAndHidesItsLight) {
+  const SceneAsset scene = loadGltf(kAssets / "furnished_room.gltf");
+  const std::vector<Triangle> triangles = worldTriangles(scene, 0.0f);
+  EXPECT_GT(triangles.size(), 150000u);
+  EXPECT_LT(triangles.size(), 250000u);
+  const glm::dvec3 eye = cameraPosition(scene);
+  EXPECT_LT(eye.x, 6.0);  // room A
+  for (const Triangle& t : triangles)
+    if (isEmitter(scene, t)) {
+      EXPECT_GT(t.centroid().x, 6.1);  // room B
+    }
+  EXPECT_EQ(emitterPointsSeen(scene, triangles, eye), 0u);
+  EXPECT_NEAR(doorGap(scene, 6.0f, 2.3f), 0.12, 0.01);
 }
 
 TEST(ShippedAssets, AnimatedLightLoopsInsideTheBox) {
