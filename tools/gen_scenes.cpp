@@ -164,9 +164,11 @@ struct RoomPair {
 
 // The shell of both rooms seen from inside, the floor (one quad when both rooms share the
 // material), and the dividing wall: its two faces with the doorway cut out, the doorway's
-// jambs and lintel.
-void addRoomPairShell(MeshAsset& rooms, const RoomPair& r, uint32_t wall, uint32_t floorA,
+// jambs and lintel; one mesh "rooms" with its node.
+void addRoomPairShell(SceneAsset& scene, const RoomPair& r, uint32_t wall, uint32_t floorA,
                       uint32_t floorB) {
+  MeshAsset rooms;
+  rooms.name = "rooms";
   const vec3 half(r.endX / 2, r.height / 2, r.depth / 2);
   addBox(rooms, glm::translate(glm::mat4(1.0f), half), half, wall, true, kBoxAllFaces & ~kBoxMinY);
   if (floorA == floorB) {
@@ -196,6 +198,7 @@ void addRoomPairShell(MeshAsset& rooms, const RoomPair& r, uint32_t wall, uint32
           {r.wallX1, r.doorTop, r.doorZ1}, wall);  // -z
   addQuad(rooms, {r.wallX0, r.doorTop, r.doorZ0}, {r.wallX1, r.doorTop, r.doorZ0},
           {r.wallX1, r.doorTop, r.doorZ1}, {r.wallX0, r.doorTop, r.doorZ1}, wall);  // -y
+  addMeshNode(scene, "rooms", addMesh(scene, std::move(rooms)));
 }
 
 // The door, 4 cm thick and 2 * halfHeight tall, 5 mm above the floor: in its own
@@ -232,10 +235,7 @@ SceneAsset doorAjar() {
   const uint32_t light = addMaterial(scene, "light", vec3(0.78f), vec3(2000.0f, 1840.0f, 1600.0f));
 
   const RoomPair pair{2.5f, 4.0f, 4.0f, 4.1f, 8.1f, 1.6f, 2.4f, 2.0f};
-  MeshAsset rooms;
-  rooms.name = "rooms";
-  addRoomPairShell(rooms, pair, wall, floor, floor);
-  addMeshNode(scene, "rooms", addMesh(scene, rooms));
+  addRoomPairShell(scene, pair, wall, floor, floor);
 
   addDoor(scene, pair, 0.99f, 0.10f, wood);  // 80 cm x 198 cm
 
@@ -417,10 +417,7 @@ SceneAsset glossyFloor() {
   const auto floorA = uint32_t(scene.materials.size() - 1);
 
   const RoomPair pair{2.6f, 5.0f, 5.0f, 5.1f, 9.1f, 1.6f, 2.6f, 2.1f};
-  MeshAsset rooms;
-  rooms.name = "rooms";
-  addRoomPairShell(rooms, pair, wall, floorA, floorB);
-  addMeshNode(scene, "rooms", addMesh(scene, rooms));
+  addRoomPairShell(scene, pair, wall, floorA, floorB);
 
   // Furniture in room A, kept clear of the walls (no coincident faces); one block in room B.
   MeshAsset blocks;
@@ -838,10 +835,7 @@ SceneAsset furnishedRoom() {
   const uint32_t light = addMaterial(scene, "light", vec3(0.78f), vec3(6000.0f, 5520.0f, 4800.0f));
 
   const RoomPair pair{2.6f, 5.5f, 6.0f, 6.1f, 10.6f, 2.3f, 3.2f, 2.05f};
-  MeshAsset rooms;
-  rooms.name = "rooms";
-  addRoomPairShell(rooms, pair, wall, floor, floor);
-  addMeshNode(scene, "rooms", addMesh(scene, rooms));
+  addRoomPairShell(scene, pair, wall, floor, floor);
   addDoor(scene, pair, 1.0f, 0.12f, door);  // 90 cm x 200 cm
 
   Hash hash{12345u};
