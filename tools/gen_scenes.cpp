@@ -162,6 +162,17 @@ struct RoomPair {
   float doorZ0, doorZ1, doorTop;
 };
 
+// A rectangular emitter just under a ceiling at `height`, facing down, over the (x, z)
+// rectangle from lo to hi.
+void addCeilingLight(SceneAsset& scene, float height, glm::vec2 lo, glm::vec2 hi,
+                     uint32_t material) {
+  MeshAsset lamp;
+  lamp.name = "ceiling_light";
+  const float y = height - 0.005f, x0 = lo.x, z0 = lo.y, x1 = hi.x, z1 = hi.y;
+  addQuad(lamp, {x0, y, z0}, {x1, y, z0}, {x1, y, z1}, {x0, y, z1}, material);
+  addMeshNode(scene, "ceiling_light", addMesh(scene, lamp));
+}
+
 // The shell of both rooms seen from inside, the floor (one quad when both rooms share the
 // material), and the dividing wall: its two faces with the doorway cut out, the doorway's
 // jambs and lintel; one mesh "rooms" with its node.
@@ -248,11 +259,7 @@ SceneAsset doorAjar() {
   addMeshNode(scene, "furniture", addMesh(scene, blocks));
 
   // The light: 60 cm square on room B's ceiling, far from the door's line of sight.
-  MeshAsset lamp;
-  lamp.name = "ceiling_light";
-  const float y = pair.height - 0.005f;
-  addQuad(lamp, {6.6f, y, 2.9f}, {7.2f, y, 2.9f}, {7.2f, y, 3.5f}, {6.6f, y, 3.5f}, light);
-  addMeshNode(scene, "ceiling_light", addMesh(scene, lamp));
+  addCeilingLight(scene, pair.height, {6.6f, 2.9f}, {7.2f, 3.5f}, light);
 
   addCamera(scene, {0.4f, 1.5f, 3.6f}, {4.0f, 1.0f, 1.8f}, 1.0f, 16.0f / 9.0f);
   return scene;
@@ -923,11 +930,7 @@ SceneAsset furnishedRoom() {
     addRoundedBox(m, placed({8.8f, 0.45f, 0.6f}, -15.0f), {0.6f, 0.45f, 0.3f}, 0.02f, 4,
                   p.woodDark);
   });
-  MeshAsset lamp;
-  lamp.name = "ceiling_light";
-  const float y = pair.height - 0.005f;
-  addQuad(lamp, {9.3f, y, 4.1f}, {9.9f, y, 4.1f}, {9.9f, y, 4.7f}, {9.3f, y, 4.7f}, light);
-  addMeshNode(scene, "ceiling_light", addMesh(scene, lamp));
+  addCeilingLight(scene, pair.height, {9.3f, 4.1f}, {9.9f, 4.7f}, light);
 
   addCamera(scene, {0.45f, 1.6f, 5.1f}, {5.0f, 0.8f, 1.6f}, 1.0f, 16.0f / 9.0f);
   return scene;
