@@ -117,8 +117,13 @@ FrameResult Renderer::renderFrame(float time, std::optional<render::CameraView> 
 void Renderer::setGuiding(const guiding::GuidingSettings& requested, bool regenerate) {
   const render::RenderSettings& r = tracer_.settings();
   guiding::GuidingSettings settings = requested;
-  settings.pointBudget =
-      guiding::resolvedPointBudget(requested, uint64_t(r.width) * r.height * r.samplesPerFrame);
+  // An automatic budget is sized once, for the frame the points are made for: a later
+  // render-size change does not regenerate the points unless asked to.
+  if (requested.pointBudget == 0 && qGuide_ && !regenerate)
+    settings.pointBudget = qGuide_->settings().pointBudget;
+  else
+    settings.pointBudget =
+        guiding::resolvedPointBudget(requested, uint64_t(r.width) * r.height * r.samplesPerFrame);
   if (!qGuide_) {
     if (!settings.enabled) return;
     auto start = std::chrono::steady_clock::now();
