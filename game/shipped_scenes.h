@@ -1,4 +1,5 @@
-// The scenes qlight ships (assets/), found by name from any working directory.
+// The scenes qlight ships (assets/, and the large ones the build generates into
+// build/assets), found by name from any working directory.
 #pragma once
 #include <string>
 #include <vector>
