@@ -50,8 +50,8 @@ struct Vertex {
 // The vertex's direction mixture: the cache point's learned distribution with
 // probability guideShare, else the BSDF.
 struct ScatterMix {
-  uint point;       // kNoCachePoint: BSDF only
-  TangentFrame pf;  // the point's frame (its strata), else the shading frame
+  uint point;     // kNoCachePoint: BSDF only
+  GuidedRow row;  // the point's frame (its strata) and CDF row
   float guideShare;
 };
 
@@ -163,7 +163,13 @@ uint lookupCachePoint(inout PathState st, uint path, Vertex v, vec3 le, Switches
 ScatterMix scatterMix(uint point, Vertex v, Switches sw) {
   ScatterMix m;
   m.point = point;
-  m.pf = point != kNoCachePoint ? pointFrame(point) : v.tf;
+  if (point != kNoCachePoint) {
+    m.row = guidedRow(point);
+  } else {
+    m.row.frame = v.tf;
+    m.row.base = 0u;
+    m.row.total = 1.0;
+  }
   m.guideShare = kUseGuiding && sw.guide && point != kNoCachePoint
                      ? guiding.selectProbability * (1.0 - bsdfSpecularProbability(v.bsdf, v.wo)) *
                            pointConfidence(point)
@@ -172,11 +178,18 @@ ScatterMix scatterMix(uint point, Vertex v, Switches sw) {
 }
 
 // The density with which the mixture produces direction wi, whichever
-// technique did: MIS and the throughput need it.
-float mixturePdf(ScatterMix m, Vertex v, vec3 wiLocal, vec3 wiWorld) {
+// technique did: MIS and the throughput need it. k is wi's stratum at the
+// point, pointLocal wi in the point's frame.
+float mixturePdfInStratum(ScatterMix m, Vertex v, vec3 wiLocal, uint k, vec3 pointLocal) {
   float pdf = (1.0 - m.guideShare) * bsdfPdf(v.bsdf, v.wo, wiLocal);
-  if (m.guideShare > 0.0) pdf += m.guideShare * guidedPdfWorld(m.point, m.pf, wiWorld);
+  if (m.guideShare > 0.0) pdf += m.guideShare * guidedPdfOfStratum(m.row, k, pointLocal.z);
   return pdf;
+}
+
+float mixturePdf(ScatterMix m, Vertex v, vec3 wiLocal, vec3 wiWorld) {
+  vec3 pointLocal = localFromWorld(m.row.frame, wiWorld);
+  uint k = m.guideShare > 0.0 ? stratumOfDirection(pointLocal, guiding.rows, guiding.cols) : 0u;
+  return mixturePdfInStratum(m, v, wiLocal, k, pointLocal);
 }
 
 // NEE: one light sample, MIS-weighted against the scatter mixture. The next
@@ -218,31 +231,34 @@ void sampleDirectLight(inout PathState st, inout Rng rng, Vertex v, ScatterMix m
 // false when no usable direction came out (the path ends).
 bool sampleScatter(inout PathState st, inout Rng rng, Vertex v, ScatterMix m, vec3 p, bool learn) {
   vec3 wiWorld = vec3(0.0);
+  vec3 pointLocal = vec3(0.0);  // wi in the point's frame
+  uint k;                       // and its stratum: each found once, for the pdf and the Q entry
   bool sampled;
   if (rngNextFloat(rng) < m.guideShare) {
-    vec3 local;
-    float guidedPdfValue;
-    sampled = sampleGuided(m.point * strataCount(), rngNext3(rng), guiding.rows, guiding.cols, local,
-                           guidedPdfValue);
-    wiWorld = worldFromLocal(m.pf, local);
+    k = sampleGuidedStratum(m.row, rngNext3(rng), pointLocal);
+    sampled = pointLocal.z > 0.0;
+    wiWorld = worldFromLocal(m.row.frame, pointLocal);
   } else {
     vec3 local;
     float bsdfPdfValue;
     sampled = bsdfSample(v.bsdf, v.wo, rngNext3(rng), local, bsdfPdfValue);
     wiWorld = worldFromLocal(v.tf, local);
+    pointLocal = localFromWorld(m.row.frame, wiWorld);
+    k = m.point != kNoCachePoint ? stratumOfDirection(pointLocal, guiding.rows, guiding.cols) : 0u;
   }
   vec3 wiLocal = localFromWorld(v.tf, wiWorld);
   float pdf = 0.0;
   // Directions under either the shading or the geometric surface are lost.
   if (sampled && wiLocal.z > 0.0 && dot(wiWorld, v.s.geometricNormal) > 0.0)
-    pdf = mixturePdf(m, v, wiLocal, wiWorld);
+    pdf = mixturePdfInStratum(m, v, wiLocal, k, pointLocal);
   bool moved = pdf > 0.0;
   if (moved) {
     st.throughput *= bsdfEval(v.bsdf, v.wo, wiLocal) * (wiLocal.z / pdf);
     st.prevScatterPdf = pdf;
     st.prevPoint = m.point;
     // The Q entry this direction updates once the next vertex is known.
-    st.prevEntry = learn && m.point != kNoCachePoint ? qEntry(m.point, m.pf, wiWorld) : kNoCachePoint;
+    st.prevEntry = learn && m.point != kNoCachePoint && pointLocal.z > 0.0 ? m.row.base + k
+                                                                           : kNoCachePoint;
     st.origin = p;
     st.dir = wiWorld;
   }

@@ -18,7 +18,7 @@ struct GuideBuffers {
   const gpu::BufferView* vCdf = nullptr;
   const gpu::Buffer* vSums = nullptr;
   const gpu::Buffer* vCounts = nullptr;
-  const gpu::Buffer* pointUpdates = nullptr;
+  const gpu::BufferView* pointUpdates = nullptr;
 };
 
 void bindGuideBuffers(gpu::PassBuilder& pass, const GuideBuffers& b);

@@ -76,8 +76,11 @@ void LearnedTables::allocate(uint32_t slots, uint32_t strata, uint32_t lights) {
   lights_ = lights;
   q_.allocate(ctx_, slots, strata, "guiding.q");
   v_.allocate(ctx_, slots, lights, "guiding.v");
-  if (!pointUpdates_ || pointUpdates_->size() < std::max<uint64_t>(uint64_t(slots) * 4, 16))
+  if (!pointUpdates_ || pointUpdates_->size() < std::max<uint64_t>(uint64_t(slots) * 4, 16)) {
+    pointUpdatesView_.reset();
     pointUpdates_ = makeTableBuffer(ctx_, uint64_t(slots) * 4, "guiding.pointUpdates");
+    pointUpdatesView_ = std::make_unique<gpu::BufferView>(ctx_, *pointUpdates_, VK_FORMAT_R32_UINT);
+  }
 }
 
 void LearnedTables::reset(const GuidingSettings& settings) {

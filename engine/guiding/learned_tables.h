@@ -51,7 +51,8 @@ class LearnedTables {
   uint64_t memoryBytes() const;  // GPU buffers
   const LearnedTable& q() const { return q_; }
   const LearnedTable& v() const { return v_; }
-  const gpu::Buffer& pointUpdates() const { return *pointUpdates_; }
+  // Read by the path passes as a texel buffer (the confidence of each point).
+  const gpu::BufferView& pointUpdatesView() const { return *pointUpdatesView_; }
   // Q of one slot (strata values), for tests and the UI.
   std::vector<float> readQ(uint32_t slot) const;
 
@@ -65,6 +66,7 @@ class LearnedTables {
   gpu::ComputePipeline update_;
   LearnedTable q_, v_;
   std::unique_ptr<gpu::Buffer> pointUpdates_;
+  std::unique_ptr<gpu::BufferView> pointUpdatesView_;
   uint32_t slots_ = 0, lights_ = 0;
   uint32_t lightFrame_ = 0;  // learning passes so far, for the light-value update interval
 };

@@ -37,7 +37,7 @@ void NullGuide::bind(gpu::PassBuilder& pass) const {
   b.spawnReports = writable_[2].get();
   b.vSums = writable_[3].get();
   b.vCounts = writable_[4].get();
-  b.pointUpdates = empty_.get();
+  b.pointUpdates = emptyUints_.get();
   bindGuideBuffers(pass, b);
 }
 

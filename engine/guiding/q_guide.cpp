@@ -134,7 +134,7 @@ void QGuide::bind(gpu::PassBuilder& pass) const {
   b.vCdf = tables_.v().cdfView.get();
   b.vSums = tables_.v().sums.get();
   b.vCounts = tables_.v().counts.get();
-  b.pointUpdates = &tables_.pointUpdates();
+  b.pointUpdates = &tables_.pointUpdatesView();
   bindGuideBuffers(pass, b);
 }
 

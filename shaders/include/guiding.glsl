@@ -15,7 +15,7 @@ layout(binding = QL_BIND_SPAWN, scalar) buffer Spawn { vec4 spawnEntries[]; };  
 layout(binding = QL_BIND_V_CDF) uniform samplerBuffer uVCdf;
 layout(binding = QL_BIND_V_SUM, scalar) buffer VSum { uint vSum[]; };  // (lo, hi) pairs
 layout(binding = QL_BIND_V_COUNT, scalar) buffer VCount { uint vCount[]; };
-layout(binding = QL_BIND_POINT_UPDATES, scalar) readonly buffer PointUpdates { uint pointUpdates[]; };
+layout(binding = QL_BIND_POINT_UPDATES) uniform usamplerBuffer uPointUpdates;
 
 
 GpuCachePoint cachePointAt(uint i) {
@@ -40,7 +40,7 @@ uint strataCount() { return guiding.rows * guiding.cols; }
 // 1 after confidenceUpdates per stratum.
 float pointConfidence(uint point) {
   if (guiding.confidenceUpdates <= 0.0) return 1.0;
-  return min(1.0, float(pointUpdates[point]) / (guiding.confidenceUpdates * float(strataCount())));
+  return min(1.0, float(texelFetch(uPointUpdates, int(point)).x) / (guiding.confidenceUpdates * float(strataCount())));
 }
 
 
@@ -57,8 +57,35 @@ uint findCachePoint(vec3 p, vec3 n) {
 
 TangentFrame pointFrame(uint point) { return frameFromNormal(cachePointAt(point).normal); }
 
-float guidedPdfWorld(uint point, TangentFrame f, vec3 dir) {
-  return guidedPdf(point * strataCount(), localFromWorld(f, dir), guiding.rows, guiding.cols);
+// A point's guided distribution as a vertex uses it: its frame, the first entry
+// of its row and the CDF's total, each read once per vertex.
+struct GuidedRow {
+  TangentFrame frame;
+  uint base;
+  float total;
+};
+
+GuidedRow guidedRow(uint point) {
+  GuidedRow r;
+  r.frame = pointFrame(point);
+  r.base = point * strataCount();
+  r.total = qCdf(r.base + strataCount() - 1u);
+  return r;
+}
+
+// Density of a direction in stratum k with cos(theta) = cosTheta in the point's frame.
+float guidedPdfOfStratum(GuidedRow r, uint k, float cosTheta) {
+  if (cosTheta <= 0.0) return 0.0;
+  float below = k > 0u ? qCdf(r.base + k - 1u) : 0.0;
+  return guidedPdfInStratum((qCdf(r.base + k) - below) / r.total, k, cosTheta, guiding.rows,
+                            guiding.cols);
+}
+
+// A stratum drawn from the row's CDF and a cosine-distributed direction in it (local).
+uint sampleGuidedStratum(GuidedRow r, vec3 u, out vec3 local) {
+  uint k = sampleCdfTarget(r.base, strataCount(), u.z * r.total);
+  local = sampleStratumCosine(k, u.xy, guiding.rows, guiding.cols);
+  return k;
 }
 
 // Q of one stratum, recovered from the CDF of Q_k cosInt_k.
@@ -66,13 +93,6 @@ float storedQ(uint point, uint k) {
   uint base = point * strataCount();
   float below = k > 0u ? qCdf(base + k - 1u) : 0.0;
   return (qCdf(base + k) - below) / stratumCosineIntegral(k, guiding.rows, guiding.cols);
-}
-
-// The Q table entry of direction `dir` leaving the point, or ~0 below its horizon.
-uint qEntry(uint point, TangentFrame f, vec3 dir) {
-  vec3 local = localFromWorld(f, dir);
-  if (local.z <= 0.0) return kNoCachePoint;
-  return point * strataCount() + stratumOfDirection(local, guiding.rows, guiding.cols);
 }
 
 // Radiance the vertex scatters toward wo, estimated from Q at its point: the

@@ -128,13 +128,12 @@ QL_FN float lambertStratumTransport(float q, float albedo, uint k, uint rows, ui
 }
 
 #ifdef QL_CDF_AT
-// Index i in [0, n) with CDF(i-1) <= u * total < CDF(i): the first entry whose
+// Index i in [0, n) with CDF(i-1) <= target = u * total < CDF(i): the first entry whose
 // inclusive CDF exceeds the target, so zero-width entries are never chosen
 // (except that u * total rounding up to total falls back to n - 1). Needs
 // n >= 1 and a positive total: keep every Q_k above a positive floor, within
 // ~1e6 of the largest, or float CDF steps vanish.
-QL_FN uint sampleCdf(uint base, uint n, float u) {
-  float target = u * QL_CDF_AT(base + n - 1u);
+QL_FN uint sampleCdfTarget(uint base, uint n, float target) {
   uint lo = 0u;
   uint hi = n - 1u;
   while (lo < hi) {
@@ -145,6 +144,10 @@ QL_FN uint sampleCdf(uint base, uint n, float u) {
       lo = mid + 1u;
   }
   return lo;
+}
+
+QL_FN uint sampleCdf(uint base, uint n, float u) {
+  return sampleCdfTarget(base, n, u * QL_CDF_AT(base + n - 1u));
 }
 
 QL_FN float cdfProbability(uint base, uint n, uint i) {
