@@ -697,7 +697,8 @@ def summary_table(scene):
     """The headline figures, one row per method."""
     baseline = find_baseline(scene)
     base_hits = last_frames_mean(baseline, "emitter_hit_share") if baseline else None
-    header = ["method", "time to unguided's error", "equal-spp relMSE ratio", "time per sample ratio",
+    header = ["method", "time to unguided's error", "equal-spp relMSE ratio",
+              "same, reference noise removed", "time per sample ratio",
               "final relMSE", "emitter hit share (last 10%) / unguided", "guide memory [MiB]"]
     rows = []
     for m in scene["methods"]:
@@ -708,6 +709,8 @@ def summary_table(scene):
             method_label(m),
             "baseline" if is_base else time_to_error_cell(scene, name),
             "baseline" if is_base else fmt(headline_value(scene, "equal_spp_relmse_ratio", name), ".2f"),
+            "baseline" if is_base else fmt(headline_value(
+                scene, "equal_spp_relmse_ratio_without_reference_noise", name), ".2f"),
             "baseline" if is_base else fmt(headline_value(scene, "time_per_sample_ratio", name), ".2f"),
             fmt(final_value(m, "relmse")),
             fmt(ratio(last_frames_mean(m, "emitter_hit_share"), base_hits), ".2f"),
