@@ -103,6 +103,17 @@ std::function<int()> addDemoCommand(CLI::App& app, const CommonOptions& common) 
                   "window: close after this many frames (0: never)");
   cmd->add_option("--screenshot-at-exit", args->screenshotAtExit,
                   "window: write the render as PNG on closing");
+  cmd->add_option("--render-scale", args->renderScale,
+                  "window: render size as a share of the window's (a still camera's)")
+      ->check(CLI::Range(0.1, 1.0))
+      ->capture_default_str();
+  cmd->add_option("--target-frame-ms", args->targetFrameMs,
+                  "window: frame time held by a smaller render while the camera moves (0: off)")
+      ->check(CLI::Range(0.0, 10000.0))
+      ->capture_default_str();
+  cmd->add_option("--scripted-move-frames", args->scriptedMoveFrames,
+                  "window: fly forward for the first N frames, then stay still")
+      ->check(CLI::Range(0, 1000000));
   args->settings.temporalBlend = 0.7f;  // the demo keeps a fading history of animated frames
   addRenderOptions(*cmd, args->settings);
   addGuidingOptions(*cmd, args->guiding, args->guidingCli);

@@ -24,8 +24,10 @@ struct DemoArgs {
   uint32_t windowWidth = 960;
   uint32_t windowHeight = 540;
   float renderScale = 0.5f;
-  uint32_t exitAfterFrames = 0;  // 0: run until the window closes
-  std::string screenshotAtExit;  // PNG of the render written when the window closes
+  float targetFrameMs = 100.0f;     // dynamic resolution while the camera moves (0: off)
+  uint32_t scriptedMoveFrames = 0;  // fly forward for the first N frames (tests, timing)
+  uint32_t exitAfterFrames = 0;     // 0: run until the window closes
+  std::string screenshotAtExit;     // PNG of the render written when the window closes
 };
 
 // Runs until the window closes; returns the exit code (non-zero after printing

@@ -7,8 +7,8 @@
 namespace qlight::game {
 
 PanelChanges drawQlightPanel(const StatsView& stats, render::RenderSettings& settings,
-                             float& renderScale, SceneClock& clock, FreeCamera& camera,
-                             const std::function<void()>& guidingSection) {
+                             float& renderScale, DynamicResolution& dynamic, SceneClock& clock,
+                             FreeCamera& camera, const std::function<void()>& guidingSection) {
   PanelChanges changes;
   ImGui::SetNextWindowPos(ImVec2(8, 8), ImGuiCond_FirstUseEver);
   float height = std::min(ImGui::GetIO().DisplaySize.y - 16.0f, 640.0f);
@@ -17,7 +17,7 @@ PanelChanges drawQlightPanel(const StatsView& stats, render::RenderSettings& set
   if (ImGui::Begin("qlight")) {
     if (ImGui::CollapsingHeader("Stats", ImGuiTreeNodeFlags_DefaultOpen)) drawStatsSection(stats);
     if (ImGui::CollapsingHeader("Render", ImGuiTreeNodeFlags_DefaultOpen))
-      changes.renderSettings = drawRenderSection(settings, renderScale);
+      changes.renderSettings = drawRenderSection(settings, renderScale, dynamic);
     if (guidingSection && ImGui::CollapsingHeader("Guiding", ImGuiTreeNodeFlags_DefaultOpen))
       guidingSection();
     if (ImGui::CollapsingHeader("Scene", ImGuiTreeNodeFlags_DefaultOpen))
@@ -55,7 +55,7 @@ void drawStatsSection(const StatsView& v) {
   ImGui::TextDisabled("%s", v.device.c_str());
 }
 
-bool drawRenderSection(render::RenderSettings& s, float& renderScale) {
+bool drawRenderSection(render::RenderSettings& s, float& renderScale, DynamicResolution& dynamic) {
   bool changed = false;
   const char* estimators[] = {"MIS (NEE + BSDF)", "BSDF only", "NEE only"};
   int estimator = int(s.estimator);
@@ -77,6 +77,14 @@ bool drawRenderSection(render::RenderSettings& s, float& renderScale) {
     s.tonemap = image::Tonemap(tonemap), changed = true;
   changed |= ImGui::SliderFloat("render scale", &renderScale, 0.1f, 1.0f, "%.2f",
                                 ImGuiSliderFlags_AlwaysClamp);
+  ImGui::Checkbox("dynamic resolution", &dynamic.enabled);
+  if (ImGui::IsItemHovered())
+    ImGui::SetTooltip("while the camera moves, a smaller render holds the target frame time");
+  if (dynamic.enabled)
+    ImGui::SliderFloat("target frame", &dynamic.targetMs, 16.0f, 1000.0f, "%.0f ms",
+                       ImGuiSliderFlags_Logarithmic | ImGuiSliderFlags_AlwaysClamp);
+  ImGui::Text("scale now %.2f%s", dynamic.scale,
+              dynamic.lowered(renderScale) ? " (lowered while moving)" : "");
   int seed = int(s.seed);
   if (ImGui::InputInt("seed", &seed)) s.seed = uint32_t(std::max(seed, 0)), changed = true;
   ImGui::SliderFloat("temporal blend", &s.temporalBlend, 0.0f, 0.95f, "%.2f",

@@ -6,6 +6,7 @@
 #include <string>
 
 #include "engine/render/render_settings.h"
+#include "game/dynamic_resolution.h"
 #include "game/window_camera.h"
 #include "game/window_scene.h"
 #include "game/window_stats.h"
@@ -31,11 +32,12 @@ struct PanelChanges {
 // Draws the whole panel; returns what the user changed this frame.
 // `guidingSection` draws the Guiding section (it owns the learned state).
 PanelChanges drawQlightPanel(const StatsView& stats, render::RenderSettings& settings,
-                             float& renderScale, SceneClock& clock, FreeCamera& camera,
-                             const std::function<void()>& guidingSection = {});
+                             float& renderScale, DynamicResolution& dynamic, SceneClock& clock,
+                             FreeCamera& camera, const std::function<void()>& guidingSection = {});
 
 void drawStatsSection(const StatsView& view);
-bool drawRenderSection(render::RenderSettings& settings, float& renderScale);
+bool drawRenderSection(render::RenderSettings& settings, float& renderScale,
+                       DynamicResolution& dynamic);
 bool drawSceneSection(SceneClock& clock);    // true: the pose changed
 bool drawCameraSection(FreeCamera& camera);  // true: reset requested
 

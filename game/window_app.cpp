@@ -48,12 +48,16 @@ WindowApp::WindowApp(const DemoArgs& args, const CommonOptions& common)
       imgui_(*ctx_, window_, presenter_),
       wanted_(initialSettings(args)),
       renderScale_(std::clamp(args.renderScale, 0.1f, 1.0f)),
+      lowestScale_(renderScale_),
       renderer_(*ctx_, asset_, wanted_, args.guiding,
                 float(args.windowWidth) / float(std::max(args.windowHeight, 1u))),
       display_(*ctx_),
       guidingWanted_(args.guiding),
       input_(window_.handle()) {
   clock_.duration = asset_.animationDuration();
+  dynamic_.enabled = args.targetFrameMs > 0.0f;
+  if (dynamic_.enabled) dynamic_.targetMs = args.targetFrameMs;
+  dynamic_.scale = renderScale_;
   resetCamera();
   registerDisplay();
 }
@@ -100,10 +104,18 @@ void WindowApp::handleActions(const WindowActions& a) {
   if (a.screenshot) screenshotPending_ = true;
 }
 
-void WindowApp::applySettings(VkExtent2D extent) {
+bool WindowApp::moveCamera(FrameInput input, uint32_t frame, float step) {
+  if (frame < args_.scriptedMoveFrames) input.camera.forward = true;
+  const glm::vec3 position = camera_.position;
+  const float yaw = camera_.yaw, pitch = camera_.pitch;
+  camera_.update(input.camera, step);
+  return camera_.position != position || camera_.yaw != yaw || camera_.pitch != pitch;
+}
+
+void WindowApp::applySettings(VkExtent2D extent, float scale) {
   render::PathTracer& tracer = renderer_.tracer();
-  wanted_.width = std::max(1u, uint32_t(std::lround(extent.width * renderScale_)));
-  wanted_.height = std::max(1u, uint32_t(std::lround(extent.height * renderScale_)));
+  wanted_.width = std::max(1u, uint32_t(std::lround(extent.width * scale)));
+  wanted_.height = std::max(1u, uint32_t(std::lround(extent.height * scale)));
   if (tracingDiffers(wanted_, tracer.settings())) {
     tracer.setSettings(wanted_);  // restarts accumulation (reallocates on a new size)
     return;
@@ -149,7 +161,10 @@ int WindowApp::run() {
     FrameInput input =
         input_.read(imgui_.wantsMouse(), imgui_.wantsKeyboard(), ImGui::GetIO().MouseWheel);
     handleActions(input.actions);
-    camera_.update(input.camera, step);
+    const bool moved = moveCamera(input, frames, step);
+    // The previous frame's time (one frame in flight) sets the size of this one.
+    const float scale = dynamic_.update(renderScale_, 1e3 * dt, moved);
+    lowestScale_ = std::min(lowestScale_, scale);
     clock_.advance(step);
     const render::PathTracer& tracer = renderer_.tracer();
     if (uiVisible_) {
@@ -159,17 +174,18 @@ int WindowApp::run() {
                      tracer.settings().height,
                      ctx_->deviceName(),
                      ctx_->deviceName().find("llvmpipe") == std::string::npos};
-      PanelChanges changes = drawQlightPanel(view, wanted_, renderScale_, clock_, camera_, [&] {
-        guiding::GuidingStats learned =
-            renderer_.guide() ? renderer_.guide()->stats() : guiding::GuidingStats{};
-        GuidingPanelResult g = drawGuidingSection(guidingWanted_, learned);
-        // Strata changes reset the tables, the rest applies from the next frame; guiding
-        // never biases the image, so accumulation goes on.
-        if (g.changed || g.regenerate) renderer_.setGuiding(guidingWanted_, g.regenerate);
-      });
+      PanelChanges changes =
+          drawQlightPanel(view, wanted_, renderScale_, dynamic_, clock_, camera_, [&] {
+            guiding::GuidingStats learned =
+                renderer_.guide() ? renderer_.guide()->stats() : guiding::GuidingStats{};
+            GuidingPanelResult g = drawGuidingSection(guidingWanted_, learned);
+            // Strata changes reset the tables, the rest applies from the next frame; guiding
+            // never biases the image, so accumulation goes on.
+            if (g.changed || g.regenerate) renderer_.setGuiding(guidingWanted_, g.regenerate);
+          });
       if (changes.resetCamera) resetCamera();
     }
-    applySettings(target->extent);
+    applySettings(target->extent, dynamic_.scale);
     // Simulate, extract, upload: a moved light or object restarts or fades the image.
     renderer_.update(clock_.time, camera_.view());
     recordFrame(*target);
@@ -190,6 +206,9 @@ int WindowApp::run() {
               frames, presenter_.swapchain().extent().width, presenter_.swapchain().extent().height,
               renderer_.tracer().settings().width, renderer_.tracer().settings().height, seconds,
               1e3 * seconds / std::max(frames, 1u));
+  std::printf("qlight demo: render scale %.2f, lowest %.2f while moving (target %.0f ms%s)\n",
+              dynamic_.scale, lowestScale_, dynamic_.targetMs,
+              dynamic_.enabled ? "" : ", dynamic resolution off");
   if (!args_.screenshotAtExit.empty())
     writeScreenshot(renderer_.tracer(), args_.screenshotAtExit, wanted_.exposure, wanted_.tonemap);
   return finishContext(*ctx_);

@@ -13,6 +13,7 @@
 #include "engine/ui/imgui_layer.h"
 #include "engine/ui/presenter.h"
 #include "game/demo_window.h"
+#include "game/dynamic_resolution.h"
 #include "game/window_camera.h"
 #include "game/window_input.h"
 #include "game/window_scene.h"
@@ -36,7 +37,9 @@ class WindowApp {
   void handleActions(const WindowActions& actions);
   // The tracer follows the edited settings and the window size (restarting
   // accumulation when what it computes changes).
-  void applySettings(VkExtent2D windowExtent);
+  void applySettings(VkExtent2D windowExtent, float scale);
+  // The camera after this frame's input (and the scripted move); true when it moved.
+  bool moveCamera(FrameInput input, uint32_t frame, float step);
   void recordFrame(const ui::PresentTarget& target);
   void resetCamera();
   void registerDisplay();  // the present phase's tonemap pass
@@ -48,8 +51,10 @@ class WindowApp {
   ui::Presenter presenter_;
   ui::ImGuiLayer imgui_;
   render::RenderSettings wanted_;  // what the panel edits; the tracer follows
-  float renderScale_;
-  session::Renderer renderer_;  // the frame: scene entities, cache points, tracer, guide
+  float renderScale_;              // the user's: the size a still camera accumulates at
+  DynamicResolution dynamic_;      // the size while the camera moves
+  float lowestScale_;              // the smallest the dynamic resolution went, for the exit line
+  session::Renderer renderer_;     // the frame: scene entities, cache points, tracer, guide
   ui::DisplayPass display_;
   guiding::GuidingSettings guidingWanted_;
   InputReader input_;

@@ -22,29 +22,51 @@ namespace {
 
 namespace fs = std::filesystem;
 
-TEST(WindowDemo, PresentsFramesWithoutValidationMessagesAndWritesScreenshot) {
-  if (!std::getenv("DISPLAY") && !XvfbServer::installed())
-    GTEST_SKIP() << "no DISPLAY and Xvfb is not installed";
-  XvfbServer server;
-  std::string error;
-  std::string display = server.start(97, error);
-  ASSERT_FALSE(display.empty()) << error;
+// Runs `qlight demo` on the Cornell box under a fresh Xvfb display with the validation
+// layer on; `dir` receives its outputs.
+struct DemoRun {
+  RunResult run;
+  std::string command;
+};
 
-  fs::path dir = fs::temp_directory_path() / ("qlight_window_test_" + std::to_string(getpid()));
-  fs::remove_all(dir);
-  fs::create_directories(dir / "xdg");
-  fs::permissions(dir / "xdg", fs::perms::owner_all, fs::perm_options::replace);
-  fs::path shot = dir / "shot.png";
-  std::string command =
-      "DISPLAY=" + display + " QLIGHT_VALIDATION=1 XDG_RUNTIME_DIR=" + (dir / "xdg").string() +
-      " timeout 600 " + QLIGHT_BINARY + " demo --scene " + QLIGHT_SOURCE_DIR +
-      "/assets/cornell_box.gltf" + " --exit-after-frames 30 --screenshot-at-exit " + shot.string() +
-      " --out " + (dir / "out").string();
-  RunResult run = runCommand(command);
-  ASSERT_EQ(run.exitCode, 0) << command << "\n" << run.output;
-  EXPECT_EQ(run.output.find("headless"), std::string::npos)
-      << "the demo fell back to headless instead of opening a window:\n"
-      << run.output;
+class WindowDemo : public ::testing::Test {
+ protected:
+  void SetUp() override {
+    if (!std::getenv("DISPLAY") && !XvfbServer::installed())
+      GTEST_SKIP() << "no DISPLAY and Xvfb is not installed";
+    std::string error;
+    display_ = server_.start(97, error);
+    ASSERT_FALSE(display_.empty()) << error;
+    dir_ = fs::temp_directory_path() / ("qlight_window_test_" + std::to_string(getpid()));
+    fs::remove_all(dir_);
+    fs::create_directories(dir_ / "xdg");
+    fs::permissions(dir_ / "xdg", fs::perms::owner_all, fs::perm_options::replace);
+  }
+  void TearDown() override { fs::remove_all(dir_); }
+
+  DemoRun runDemo(const std::string& options) {
+    DemoRun r;
+    r.command = "DISPLAY=" + display_ +
+                " QLIGHT_VALIDATION=1 XDG_RUNTIME_DIR=" + (dir_ / "xdg").string() +
+                " timeout 600 " + QLIGHT_BINARY + " demo --scene " + QLIGHT_SOURCE_DIR +
+                "/assets/cornell_box.gltf --out " + (dir_ / "out").string() + " " + options;
+    r.run = runCommand(r.command);
+    EXPECT_EQ(r.run.output.find("headless"), std::string::npos)
+        << "the demo fell back to headless instead of opening a window:\n"
+        << r.run.output;
+    return r;
+  }
+
+  XvfbServer server_;
+  std::string display_;
+  fs::path dir_;
+};
+
+TEST_F(WindowDemo, PresentsFramesWithoutValidationMessagesAndWritesScreenshot) {
+  fs::path shot = dir_ / "shot.png";
+  DemoRun demo = runDemo("--exit-after-frames 30 --screenshot-at-exit " + shot.string());
+  const RunResult& run = demo.run;
+  ASSERT_EQ(run.exitCode, 0) << demo.command << "\n" << run.output;
   EXPECT_NE(run.output.find("30 frames in a"), std::string::npos) << run.output;
   ASSERT_TRUE(fs::exists(shot)) << run.output;
 
@@ -61,7 +83,30 @@ TEST(WindowDemo, PresentsFramesWithoutValidationMessagesAndWritesScreenshot) {
   // A black frame (nothing traced, nothing accumulated) has mean 0; the lit
   // Cornell box averages far above 8/255.
   EXPECT_GT(mean, 8.0) << "screenshot is (nearly) black";
-  fs::remove_all(dir);
+}
+
+// A scripted flight of 12 frames with a target no lavapipe frame meets: the render scale
+// goes down while the camera moves and is back at the full scale once it has been still,
+// where the image accumulates (the screenshot has the full render size).
+TEST_F(WindowDemo, DynamicResolutionLowersWhileMovingAndRestoresWhenStill) {
+  fs::path shot = dir_ / "shot.png";
+  DemoRun demo = runDemo(
+      "--exit-after-frames 24 --scripted-move-frames 12 --target-frame-ms 20"
+      " --screenshot-at-exit " +
+      shot.string());
+  const RunResult& run = demo.run;
+  ASSERT_EQ(run.exitCode, 0) << demo.command << "\n" << run.output;
+  float now = 0, lowest = 0;
+  const size_t at = run.output.find("render scale ");
+  ASSERT_NE(at, std::string::npos) << run.output;
+  ASSERT_EQ(std::sscanf(run.output.c_str() + at, "render scale %f, lowest %f", &now, &lowest), 2)
+      << run.output;
+  game::DemoArgs defaults;
+  EXPECT_FLOAT_EQ(now, defaults.renderScale) << run.output;
+  EXPECT_LT(lowest, 0.8f * defaults.renderScale) << run.output;
+  int w = 0, h = 0, channels = 0;
+  ASSERT_TRUE(stbi_info(shot.string().c_str(), &w, &h, &channels)) << run.output;
+  EXPECT_EQ(w, int(defaults.windowWidth * defaults.renderScale));
 }
 
 }  // namespace
