@@ -48,7 +48,9 @@ void main() {
     vec3 b = sampleTriangleBarycentrics(rngNext2(rng));
     vec3 n = triangleLightNormal(l);
     if ((l.flags & kLightDoubleSided) != 0u && rngNextFloat(rng) < 0.5) n = -n;
-    origin = offsetRayOrigin(l.position + b.y * l.edge1 + b.z * l.edge2, n);
+    vec3 extent = abs(l.position) + abs(l.edge1) + abs(l.edge2);
+    origin = offsetRayOriginFrom(l.position + b.y * l.edge1 + b.z * l.edge2, n,
+                                 max(extent.x, max(extent.y, extent.z)));
     dir = worldFromLocal(frameFromNormal(n), sampleCosineHemisphere(rngNext2(rng)));
   } else if (l.type == kLightPoint || l.type == kLightSpot) {
     origin = l.position;
@@ -63,7 +65,7 @@ void main() {
     BvhHit hit;
     if (!traceClosest(origin, dir, 1e30, hit)) break;
     Surface s = resolveSurface(hit, origin, dir);
-    vec3 p = offsetRayOrigin(s.position, s.geometricNormal);
+    vec3 p = offsetRayOriginFrom(s.position, s.geometricNormal, s.extent);
     emit(id * pc.maxBounces + bounce, s.position, s.geometricNormal, occlusion(p, s.geometricNormal, rng));
     dir = worldFromLocal(frameFromNormal(s.geometricNormal), sampleCosineHemisphere(rngNext2(rng)));
     origin = p;

@@ -305,7 +305,7 @@ void main() {
       // D&K's path length: vertices up to the first emitter reached.
       if ((st.flags & kPathEmitterHit) == 0u) st.vertices++;
       ScatterMix m = scatterMix(point, v, sw);
-      vec3 p = offsetRayOrigin(s.position, s.geometricNormal);
+      vec3 p = offsetRayOriginFrom(s.position, s.geometricNormal, s.extent);
       if (sw.nee) sampleDirectLight(st, rng, v, m, p, sw.mis);
       alive = sampleScatter(st, rng, v, m, p, sw.learn);
       if (alive) alive = survivesRoulette(st, rng);

@@ -19,6 +19,18 @@ QL_FN vec3 offsetRayOrigin(vec3 p, vec3 n) {
               abs(p.y) < kOrigin ? p.y + kFloatScale * n.y : pi.y,
               abs(p.z) < kOrigin ? p.z + kFloatScale * n.z : pi.z);
 }
+
+// A hit point computed from numbers as large as `extent` (the triangle's vertices,
+// the ray's origin) carries a rounding error that scales with them, not with the
+// point: a point near the origin on a 1 km triangle is off by ~1e-4 m, far more
+// than its own ulps. The point moves kExtentOffset * extent further out: 16 ulps of
+// the extent (1 mm on a 1 km triangle, 10 um in a 5 m room); 1 ulp already passes
+// tests/render/ray_offset_test.cpp, none fails it (8% of its floor self-shadowed).
+QL_CONST float kExtentOffset = 2e-6f;
+
+QL_FN vec3 offsetRayOriginFrom(vec3 p, vec3 n, float extent) {
+  return offsetRayOrigin(p, n) + n * (kExtentOffset * extent);
+}
 QL_END
 
 #endif
