@@ -1,19 +1,34 @@
 #include "game/cli_options.h"
 
+#include <cmath>
 #include <map>
 
 namespace qlight::game {
+
+CLI::Validator finiteRange(double lowest, double highest) {
+  const std::string range =
+      "[" + CLI::detail::to_string(lowest) + " - " + CLI::detail::to_string(highest) + "]";
+  return CLI::Validator(
+      [=](std::string& text) -> std::string {
+        double value = 0;
+        if (!CLI::detail::lexical_cast(text, value)) return "not a number: " + text;
+        if (!std::isfinite(value) || value < lowest || value > highest)
+          return "value " + text + " not in range " + range;
+        return {};
+      },
+      "FLOAT in " + range);
+}
 
 void addRenderOptions(CLI::App& app, render::RenderSettings& s) {
   app.add_option("--width", s.width, "image width in pixels")->check(CLI::Range(1, 16384));
   app.add_option("--height", s.height, "image height in pixels")->check(CLI::Range(1, 16384));
   addTracingOptions(app, s);
   app.add_option("--exposure", s.exposure, "exposure multiplier for PNG and display")
-      ->check(CLI::PositiveNumber);
+      ->check(finiteRange(1e-6, 1e6));
   app.add_option(
          "--temporal-blend", s.temporalBlend,
          "animated scenes: weight kept of the accumulated image when things move (0: restart)")
-      ->check(CLI::Range(0.0, 0.99));
+      ->check(finiteRange(0.0, 0.99));
   std::map<std::string, image::Tonemap> tonemaps{{"aces", image::Tonemap::Aces},
                                                  {"clamp", image::Tonemap::Clamp}};
   app.add_option("--tonemap", s.tonemap, "aces or clamp (PNG and display only)")

@@ -29,6 +29,10 @@ void addGuidingOptions(CLI::App& app, guiding::GuidingSettings& g, GuidingCli& c
 void finishGuidingOptions(const GuidingCli& cli, guiding::GuidingSettings& g,
                           render::RenderSettings& r);
 
+// CLI::Range for real numbers that also refuses NaN and infinities (CLI11's range check
+// lets NaN through: every comparison with it is false).
+CLI::Validator finiteRange(double lowest, double highest);
+
 // Exit code when the validation layer reported something (tests treat it as failure).
 constexpr int kExitValidation = 3;
 

@@ -89,10 +89,10 @@ std::function<int()> addDemoCommand(CLI::App& app, const CommonOptions& common) 
       ->check(CLI::Range(1, 100000))
       ->capture_default_str();
   cmd->add_option("--fps", args->fps, "headless: frames per second of scene time")
-      ->check(CLI::Range(1.0, 1000.0));
+      ->check(finiteRange(1.0, 1000.0));
   cmd->add_option("--move-seconds", args->moveSeconds,
                   "headless: seconds the camera moves before it stops")
-      ->check(CLI::Range(0.0, 1e6));
+      ->check(finiteRange(0.0, 1e6));
   cmd->add_option("--save-every", args->saveEvery,
                   "headless: write every Nth frame (0: last only)");
   cmd->add_option("--out", args->outDir, "headless: output folder")->capture_default_str();
@@ -105,11 +105,11 @@ std::function<int()> addDemoCommand(CLI::App& app, const CommonOptions& common) 
                   "window: write the render as PNG on closing");
   cmd->add_option("--render-scale", args->renderScale,
                   "window: render size as a share of the window's (a still camera's)")
-      ->check(CLI::Range(0.1, 1.0))
+      ->check(finiteRange(0.1, 1.0))
       ->capture_default_str();
   cmd->add_option("--target-frame-ms", args->targetFrameMs,
                   "window: frame time held by a smaller render while the camera moves (0: off)")
-      ->check(CLI::Range(0.0, 10000.0))
+      ->check(finiteRange(0.0, 10000.0))
       ->capture_default_str();
   cmd->add_option("--scripted-move-frames", args->scriptedMoveFrames,
                   "window: fly forward for the first N frames, then stay still")

@@ -65,7 +65,7 @@ std::function<int()> addRenderCommand(CLI::App& app, const CommonOptions& common
   cmd->add_option("--spp", args->spp, "samples per pixel")->check(CLI::Range(1, 1 << 20));
   cmd->add_option("--batch", args->batch, "samples per pixel per GPU submission")
       ->check(CLI::Range(1, 4096));
-  cmd->add_option("--time", args->time, "animation time in seconds")->check(CLI::Range(0.0, 1e6));
+  cmd->add_option("--time", args->time, "animation time in seconds")->check(finiteRange(0.0, 1e6));
   cmd->add_option("--stats-json", args->statsJson, "write render statistics here");
   addRenderOptions(*cmd, args->settings);
   addGuidingOptions(*cmd, args->guiding, args->guidingCli);

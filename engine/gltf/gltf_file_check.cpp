@@ -246,9 +246,15 @@ bool isSupportedRequiredExtension(const std::string& name) {
 }
 
 CheckedGltfFile readAndCheckGltfFile(const std::filesystem::path& path, LoadContext& ctx) {
+  return checkGltfBytes(readWholeFile(path, ctx), path.parent_path(), ctx);
+}
+
+CheckedGltfFile checkGltfBytes(std::vector<uint8_t> bytes, const std::filesystem::path& baseDir,
+                               LoadContext& ctx) {
+  if (bytes.empty()) ctx.fail("file is empty");
   CheckedGltfFile file;
-  file.bytes = readWholeFile(path, ctx);
-  file.baseDir = path.parent_path().string();
+  file.bytes = std::move(bytes);
+  file.baseDir = baseDir.string();
   file.binary = file.bytes.size() >= 4 && readU32(file.bytes, 0) == kGlbMagic;
 
   GlbChunks glb;
@@ -273,8 +279,7 @@ CheckedGltfFile readAndCheckGltfFile(const std::filesystem::path& path, LoadCont
   if (!root.contains("asset")) ctx.fail("not glTF: no \"asset\" property");
 
   checkRequiredExtensions(root, ctx);
-  const std::vector<uint64_t> lengths =
-      checkBuffers(root, glb, file.binary, path.parent_path(), ctx);
+  const std::vector<uint64_t> lengths = checkBuffers(root, glb, file.binary, baseDir, ctx);
   checkBufferViews(root, lengths, ctx);
   checkImages(root, ctx);
   return file;

@@ -24,5 +24,9 @@ struct CheckedGltfFile {
 bool isSupportedRequiredExtension(const std::string& name);
 
 CheckedGltfFile readAndCheckGltfFile(const std::filesystem::path& path, LoadContext& ctx);
+// The same checks on a file's bytes already in memory; external buffers and images are
+// looked up in baseDir.
+CheckedGltfFile checkGltfBytes(std::vector<uint8_t> bytes, const std::filesystem::path& baseDir,
+                               LoadContext& ctx);
 
 }  // namespace qlight::gltf::detail

@@ -47,11 +47,8 @@ void warnAboutUnusedExtensions(const tinygltf::Model& model, detail::LoadContext
       ctx.warn("extension " + name + " is not supported and is ignored");
 }
 
-}  // namespace
-
-SceneAsset loadGltf(const std::filesystem::path& path) {
-  detail::LoadContext ctx(path.string());
-  const detail::CheckedGltfFile file = detail::readAndCheckGltfFile(path, ctx);
+SceneAsset convertCheckedFile(const detail::CheckedGltfFile& file,
+                              const std::filesystem::path& source, detail::LoadContext& ctx) {
   const tinygltf::Model model = parseWithTinygltf(file, ctx);
   warnAboutUnusedExtensions(model, ctx);
 
@@ -60,7 +57,7 @@ SceneAsset loadGltf(const std::filesystem::path& path) {
     detail::checkAccessorBounds(model, int(i), "accessor " + std::to_string(i), ctx);
 
   SceneAsset scene;
-  scene.source = path;
+  scene.source = source;
   detail::convertMaterials(model, scene, ctx);
   detail::convertTextures(model, scene, ctx);
   detail::convertMeshes(model, scene, ctx);
@@ -73,6 +70,21 @@ SceneAsset loadGltf(const std::filesystem::path& path) {
   detail::replaceOrthographicCameras(model, scene, ctx);
   scene.warnings = std::move(ctx.warnings());
   return scene;
+}
+
+}  // namespace
+
+SceneAsset loadGltf(const std::filesystem::path& path) {
+  detail::LoadContext ctx(path.string());
+  return convertCheckedFile(detail::readAndCheckGltfFile(path, ctx), path, ctx);
+}
+
+SceneAsset loadGltfFromMemory(std::span<const uint8_t> bytes, const std::filesystem::path& baseDir,
+                              const std::string& name) {
+  detail::LoadContext ctx(name);
+  return convertCheckedFile(
+      detail::checkGltfBytes(std::vector<uint8_t>(bytes.begin(), bytes.end()), baseDir, ctx),
+      baseDir / name, ctx);
 }
 
 }  // namespace qlight::gltf

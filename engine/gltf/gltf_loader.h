@@ -1,7 +1,10 @@
 // glTF 2.0 import (.gltf with embedded or external buffers, and .glb) into plain data.
 #pragma once
 
+#include <cstdint>
 #include <filesystem>
+#include <span>
+#include <string>
 
 #include "engine/scene/scene_asset.h"
 
@@ -18,5 +21,10 @@ using namespace ::qlight::scene;  // glTF I/O reads and writes the scene's plain
 // (points and lines, morph weight animation, skins, unknown texture extensions) are skipped
 // with a warning in SceneAsset::warnings, also printed to stderr.
 SceneAsset loadGltf(const std::filesystem::path& path);
+
+// The same from a .gltf's or .glb's bytes in memory (external buffers and images are looked
+// up in baseDir; errors and warnings name the file `name`).
+SceneAsset loadGltfFromMemory(std::span<const uint8_t> bytes, const std::filesystem::path& baseDir,
+                              const std::string& name);
 
 }  // namespace qlight::gltf

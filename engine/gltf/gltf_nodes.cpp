@@ -74,8 +74,13 @@ void chooseRoots(const tinygltf::Model& model, SceneAsset& scene, LoadContext& c
              std::to_string(model.scenes.size()) + " scenes)");
   if (shown < 0 && !model.scenes.empty()) shown = 0;
   if (shown < 0) {
+    // glTF lets a file without scenes be a library of nodes; viewers differ on what to show.
+    // qlight shows every node without a parent, and says so.
     for (uint32_t i = 0; i < scene.nodes.size(); ++i)
       if (scene.nodes[i].parent < 0) scene.rootNodes.push_back(i);
+    if (!scene.nodes.empty())
+      ctx.warn("the file defines no scene: showing all " + std::to_string(scene.rootNodes.size()) +
+               " root nodes");
     return;
   }
   std::vector<bool> listed(scene.nodes.size(), false);

@@ -118,9 +118,23 @@ TEST(RenderCli, AbsurdSettingsAreRejected) {
        {"--width 0", "--height -3", "--spp 0", "--max-depth 100000", "--exposure nan",
         "--exposure -1", "--estimator magic", "--rr maybe", "--time -1", "--strata 0x8",
         "--strata 8by8", "--strata 64x64", "--alpha-min 0.5 --alpha-max 0.1", "--points 2000000",
-        "--select-probability 1"}) {
+        "--select-probability 1", "--time nan", "--time inf", "--exposure inf",
+        "--temporal-blend nan"}) {
     auto r = runQlight(base + bad);
     EXPECT_NE(r.exitCode, 0) << bad << "\n" << r.output;
+  }
+}
+
+// Non-finite numbers are refused like any other out-of-range value: one line naming the
+// option, before anything is loaded or rendered.
+TEST(DemoCli, NonFiniteNumbersAreRejected) {
+  for (const char* bad : {"--fps nan", "--move-seconds nan", "--move-seconds inf",
+                          "--target-frame-ms nan", "--render-scale nan", "--exposure nan"}) {
+    auto r = runQlight(std::string("demo --headless --frames 1 --out /tmp/qlight_nan ") + bad);
+    EXPECT_NE(r.exitCode, 0) << bad << "\n" << r.output;
+    const std::string option = std::string(bad).substr(0, std::string(bad).find(' '));
+    EXPECT_NE(r.output.find(option), std::string::npos) << bad << "\n" << r.output;
+    EXPECT_EQ(r.output.find("frames of"), std::string::npos) << "it rendered:\n" << r.output;
   }
 }
 

@@ -251,6 +251,21 @@ TEST(GltfFeatures, SceneChoiceAndMatrixNodes) {
   EXPECT_NEAR(scene.bounds.min.z, 3.0f, 1e-5f);
 }
 
+// A file without scenes (a glTF "library") shows every parentless node, with a warning.
+TEST(GltfFeatures, NoSceneShowsEveryRootNodeWithAWarning) {
+  TempDir dir;
+  json doc = triangleDoc();
+  doc["nodes"] = json::array({{{"mesh", 0}, {"children", {2}}}, {{"mesh", 0}}, {{"mesh", 0}}});
+  doc.erase("scenes");
+  doc.erase("scene");
+  const SceneAsset scene = loadGltf(writeDoc(dir, "noscene.gltf", doc));
+  EXPECT_EQ(scene.rootNodes, (std::vector<uint32_t>{0, 1}));
+  bool warned = false;
+  for (const std::string& w : scene.warnings)
+    warned = warned || w.find("defines no scene: showing all 2 root nodes") != std::string::npos;
+  EXPECT_TRUE(warned);
+}
+
 TEST(GltfFeatures, UnreadableImagesBecomeWhiteTexturesWithAWarning) {
   TempDir dir;
   std::ifstream in(std::filesystem::path(QLIGHT_SAMPLES_DIR) / "BoxTextured.gltf");
