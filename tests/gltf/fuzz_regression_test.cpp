@@ -1,4 +1,5 @@
-// The glTF fuzzer's corpus (fuzz/corpus/gltf) and every input it ever crashed on
+// The glTF fuzzer's seeds (fuzz/corpus/gltf), the smallest of what it grew from them
+// (fuzz/corpus/gltf-grown) and every input it ever crashed on
 // (tests/data/gltf-fuzz, one file per defect, named after it) go through the
 // loader as the fuzzer runs them: each gives a scene or one std::runtime_error
 // line naming the input, never another exception. Under the sanitize preset a
@@ -20,7 +21,7 @@ namespace fs = std::filesystem;
 
 std::vector<fs::path> inputs() {
   std::vector<fs::path> files;
-  for (const char* dir : {"/fuzz/corpus/gltf", "/tests/data/gltf-fuzz"})
+  for (const char* dir : {"/fuzz/corpus/gltf", "/fuzz/corpus/gltf-grown", "/tests/data/gltf-fuzz"})
     for (const auto& e : fs::directory_iterator(std::string(QLIGHT_SOURCE_DIR) + dir))
       if (e.is_regular_file() && e.path().filename() != "README.md") files.push_back(e.path());
   return files;
