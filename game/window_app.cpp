@@ -162,6 +162,7 @@ int WindowApp::run() {
         input_.read(imgui_.wantsMouse(), imgui_.wantsKeyboard(), ImGui::GetIO().MouseWheel);
     handleActions(input.actions);
     const bool moved = moveCamera(input, frames, step);
+    if (moved && frames > 0) movingSeconds_ += dt, ++movingFrames_;
     // The previous frame's time (one frame in flight) sets the size of this one.
     const float scale = dynamic_.update(renderScale_, 1e3 * dt, moved);
     lowestScale_ = std::min(lowestScale_, scale);
@@ -206,9 +207,12 @@ int WindowApp::run() {
               frames, presenter_.swapchain().extent().width, presenter_.swapchain().extent().height,
               renderer_.tracer().settings().width, renderer_.tracer().settings().height, seconds,
               1e3 * seconds / std::max(frames, 1u));
-  std::printf("qlight demo: render scale %.2f, lowest %.2f while moving (target %.0f ms%s)\n",
-              dynamic_.scale, lowestScale_, dynamic_.targetMs,
-              dynamic_.enabled ? "" : ", dynamic resolution off");
+  std::printf(
+      "qlight demo: render scale %.2f, lowest %.2f while moving (target %.0f ms%s); "
+      "%u frames moving at %.1f ms/frame\n",
+      dynamic_.scale, lowestScale_, dynamic_.targetMs,
+      dynamic_.enabled ? "" : ", dynamic resolution off", movingFrames_,
+      1e3 * movingSeconds_ / std::max(movingFrames_, 1u));
   if (!args_.screenshotAtExit.empty())
     writeScreenshot(renderer_.tracer(), args_.screenshotAtExit, wanted_.exposure, wanted_.tonemap);
   return finishContext(*ctx_);
