@@ -36,6 +36,7 @@ void drawStatsSection(const StatsView& v) {
   ImGui::Text("%.2f Mrays/s", s.mraysPerSecond());
   ImGui::Text("emitter hits %.1f%% of paths", 100.0 * s.emitterHitShare());
   ImGui::Text("mean path length %.2f vertices", s.meanPathLength());
+  ImGui::Text("rejected samples (NaN/Inf) %llu", (unsigned long long)s.rejectedSamples());
   if (s.gpuMs().empty()) {
     ImGui::TextDisabled("GPU timings: no timestamps on this queue");
   } else if (ImGui::BeginTable("gpu", 2, ImGuiTableFlags_SizingStretchProp)) {

@@ -18,6 +18,7 @@ void FrameStats::add(const FrameSample& s) {
   blend(mrays_, s.seconds > 0 ? double(c.rays) / s.seconds * 1e-6 : 0.0, first_);
   blend(emitterHitShare_, double(c.emitterHits) / paths, first_);
   blend(meanPathLength_, double(c.pathVertices) / paths, first_);
+  rejectedSamples_ += c.invalidSamples;
   // Passes absent this frame (e.g. the accumulation clear) count as 0 ms.
   for (auto& [name, ms] : gpuMs_)
     if (!s.gpuMs.count(name)) blend(ms, 0.0, false);

@@ -23,12 +23,15 @@ class FrameStats {
   double mraysPerSecond() const { return mrays_; }
   double emitterHitShare() const { return emitterHitShare_; }
   double meanPathLength() const { return meanPathLength_; }
+  // Samples whose radiance was NaN or infinite, dropped from the image, since the start.
+  uint64_t rejectedSamples() const { return rejectedSamples_; }
   double gpuTotalMs() const;
   const std::map<std::string, double>& gpuMs() const { return gpuMs_; }
 
  private:
   bool first_ = true;
   double frameMs_ = 0, mrays_ = 0, emitterHitShare_ = 0, meanPathLength_ = 0;
+  uint64_t rejectedSamples_ = 0;
   std::map<std::string, double> gpuMs_;
 };
 
