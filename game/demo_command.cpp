@@ -14,6 +14,7 @@
 #include "game/context_setup.h"
 #include "game/demo_window.h"
 #include "game/flythrough.h"
+#include "game/process_memory.h"
 #include "game/shipped_scenes.h"
 
 namespace qlight::game {
@@ -52,6 +53,10 @@ int runHeadless(const DemoArgs& a, const CommonOptions& common) {
                       {"rays", r.counters.rays},
                       {"emitter_hit_share", r.emitterHitShare()},
                       {"mean_path_length", r.meanPathLength()},
+                      {"invalid_samples", r.counters.invalidSamples},
+                      {"resident_mib", residentMegabytes()},
+                      {"device_allocations", ctx->memoryInUse().allocations},
+                      {"device_mib", double(ctx->memoryInUse().bytes) / (1024.0 * 1024.0)},
                       {"gpu_ms", r.gpuMs}});
     bool last = f + 1 == a.frames;
     if (last || (a.saveEvery > 0 && f % a.saveEvery == 0)) {
@@ -67,6 +72,12 @@ int runHeadless(const DemoArgs& a, const CommonOptions& common) {
   stats["scene"] = resolveScene(a.scene);
   stats["mode"] = "headless";
   stats["frames_detail"] = frames;
+  if (const guiding::QGuide* guide = renderer.guide(); guide && a.guiding.enabled) {
+    const guiding::LearnedTables::ValueRange q = guide->qRange();
+    stats["q_min"] = q.min;
+    stats["q_max"] = q.max;
+    stats["q_non_finite"] = q.nonFinite;
+  }
   session::writeJson(fs::path(a.outDir) / "stats.json", stats);
   image::writeImage(fs::path(a.outDir) / "final.png", renderer.tracer().readImage(), s.exposure,
                     s.tonemap);

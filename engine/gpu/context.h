@@ -1,6 +1,8 @@
 // The Vulkan instance, the chosen physical device, the logical device with
 // one compute(+graphics) queue, and the validation messenger.
 #pragma once
+#include <atomic>
+#include <memory>
 #include <vulkan/vulkan.h>
 
 #include <functional>
@@ -55,6 +57,12 @@ class Context {
                                   VkMemoryPropertyFlags required,
                                   uint32_t* typeIndex = nullptr) const;
 
+  // Device memory allocations alive now, and their bytes (the soak run watches them).
+  struct MemoryInUse {
+    int64_t allocations = 0, bytes = 0;
+  };
+  MemoryInUse memoryInUse() const { return {memoryInUse_->allocations, memoryInUse_->bytes}; }
+
   // Records with `record`, submits and waits (uploads, readbacks, tests).
   void submitAndWait(const std::function<void(VkCommandBuffer)>& record) const;
 
@@ -78,6 +86,11 @@ class Context {
 
   bool validation_ = false;
   bool floatAtomicAdd_ = false;
+  // Shared with each allocation's deleter, which may run after the Context is gone.
+  struct LiveMemory {
+    std::atomic<int64_t> allocations{0}, bytes{0};
+  };
+  std::shared_ptr<LiveMemory> memoryInUse_ = std::make_shared<LiveMemory>();
   double timestampPeriodNs_ = 0.0;
   Unique<VkInstance> instance_;
   Unique<VkDebugUtilsMessengerEXT> messenger_;

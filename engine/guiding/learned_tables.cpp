@@ -1,6 +1,7 @@
 #include "engine/guiding/learned_tables.h"
 
 #include <algorithm>
+#include <cmath>
 #include <cstring>
 #include <stdexcept>
 
@@ -142,6 +143,24 @@ void LearnedTables::recordLearning(gpu::PassRecorder& rec, uint32_t rows,
   recordUpdate(rec, "guiding.q_update", q_, rows, true, false, settings);
   if (lights_ > 0 && lightFrame_++ % kLightUpdateInterval == 0)
     recordUpdate(rec, "guiding.v_update", v_, rows, false, false, settings);
+}
+
+LearnedTables::ValueRange LearnedTables::qRange() const {
+  std::vector<float> q(uint64_t(slots_) * q_.rowLength);
+  ValueRange r;
+  if (q.empty()) return r;
+  q_.values->download(ctx_, q.data(), q.size() * 4, 0);
+  r.min = INFINITY;
+  r.max = -INFINITY;
+  for (float v : q) {
+    if (!std::isfinite(v)) {
+      ++r.nonFinite;
+      continue;
+    }
+    r.min = std::min(r.min, v);
+    r.max = std::max(r.max, v);
+  }
+  return r;
 }
 
 std::vector<float> LearnedTables::readQ(uint32_t slot) const {

@@ -55,6 +55,13 @@ class LearnedTables {
   const gpu::BufferView& pointUpdatesView() const { return *pointUpdatesView_; }
   // Q of one slot (strata values), for tests and the UI.
   std::vector<float> readQ(uint32_t slot) const;
+  // Smallest and largest Q over every slot, and the entries that are not finite (the soak
+  // run checks the tables stay finite and bounded).
+  struct ValueRange {
+    float min = 0, max = 0;
+    uint64_t nonFinite = 0;
+  };
+  ValueRange qRange() const;
 
  private:
   // everyRow: also the rows without targets (their CDFs after a reset).

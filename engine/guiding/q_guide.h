@@ -51,6 +51,7 @@ class QGuide final : public render::Guide {
   uint64_t memoryBytes() const;
   // Q of the point in `slot` (its strata values), for tests and the UI.
   std::vector<float> readQ(uint32_t slot) const { return tables_.readQ(slot); }
+  LearnedTables::ValueRange qRange() const { return tables_.qRange(); }
 
   void bind(gpu::PassBuilder& pass) const override;
   render::GuideFeatures features() const override;
