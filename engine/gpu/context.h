@@ -1,11 +1,11 @@
 // The Vulkan instance, the chosen physical device, the logical device with
 // one compute(+graphics) queue, and the validation messenger.
 #pragma once
-#include <atomic>
-#include <memory>
 #include <vulkan/vulkan.h>
 
+#include <atomic>
 #include <functional>
+#include <memory>
 #include <mutex>
 #include <string>
 #include <vector>
