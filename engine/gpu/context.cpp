@@ -300,6 +300,26 @@ void Context::createDevice() {
       pool, [device](VkCommandPool p) { vkDestroyCommandPool(device, p, nullptr); });
 }
 
+void Context::requireBufferFits(const std::string& what, uint64_t bytes, bool storageBuffer,
+                                uint64_t texels) const {
+  const VkPhysicalDeviceLimits& limits = properties_.limits;
+  uint64_t heap = 0;
+  for (uint32_t i = 0; i < memory_.memoryHeapCount; ++i)
+    heap = std::max<uint64_t>(heap, memory_.memoryHeaps[i].size);
+  auto mib = [](uint64_t b) { return std::to_string((b + (1u << 20) - 1) >> 20) + " MiB"; };
+  std::string problem;
+  if (storageBuffer && bytes > limits.maxStorageBufferRange)
+    problem = "needs a buffer of " + mib(bytes) + "; the device allows " +
+              mib(limits.maxStorageBufferRange) + " (maxStorageBufferRange)";
+  else if (texels > limits.maxTexelBufferElements)
+    problem = "needs " + std::to_string(texels) + " texels in one buffer; the device allows " +
+              std::to_string(limits.maxTexelBufferElements) + " (maxTexelBufferElements)";
+  else if (bytes > heap)
+    problem = "needs " + mib(bytes) + "; the device's largest memory heap has " + mib(heap);
+  if (!problem.empty())
+    throw std::runtime_error(what + " is larger than " + deviceName() + " allows: it " + problem);
+}
+
 uint32_t Context::findMemoryType(uint32_t typeBits, VkMemoryPropertyFlags required,
                                  VkMemoryPropertyFlags preferred) const {
   for (int pass = 0; pass < 2; ++pass) {

@@ -50,6 +50,13 @@ class Context {
   // Nanoseconds per timestamp tick; 0 when the queue has no timestamps.
   double timestampPeriodNs() const { return timestampPeriodNs_; }
 
+  // Refuses, up front and in one line, memory the device cannot hold: `what` (its purpose,
+  // and what the user can lower) of `bytes`, bound as a storage buffer of that range when
+  // `storageBuffer`, read through a texel view of `texels` elements (0: none); checked
+  // against maxStorageBufferRange, maxTexelBufferElements and the largest memory heap.
+  void requireBufferFits(const std::string& what, uint64_t bytes, bool storageBuffer,
+                         uint64_t texels) const;
+
   uint32_t findMemoryType(uint32_t typeBits, VkMemoryPropertyFlags required,
                           VkMemoryPropertyFlags preferred = 0) const;
   // Allocates memory of the first type with `required` properties that fits.

@@ -35,6 +35,10 @@ void LearnedTable::allocate(const gpu::Context& ctx, uint64_t slots, uint32_t le
                             const std::string& name) {
   rowLength = length;
   const uint64_t entries = std::max<uint64_t>(slots * length, 1);
+  // The 64-bit sums are the largest buffer of a table.
+  ctx.requireBufferFits("the " + name + " table (" + std::to_string(slots) + " points x " +
+                            std::to_string(length) + " entries; lower --points or --strata)",
+                        entries * 8, true, entries);
   cdfView.reset();
   values = makeTableBuffer(ctx, entries * 4, name + ".values");
   visits = makeTableBuffer(ctx, entries * 4, name + ".visits");

@@ -45,6 +45,17 @@ void PathTracer::setSettings(const RenderSettings& s) {
   if (!(s.exposure > 0.0f) || !std::isfinite(s.exposure))
     throw std::invalid_argument("exposure must be a positive finite number");
   bool resize = !accum_ || accum_->width() != s.width || accum_->height() != s.height;
+  if (resize) {
+    // The path state is one storage texel buffer of every pixel's paths (texel count
+    // limit), each path queue a storage buffer (range limit), all in device memory.
+    const uint64_t pixels = uint64_t(s.width) * s.height;
+    const std::string what =
+        "a " + std::to_string(s.width) + "x" + std::to_string(s.height) + " render";
+    ctx_.requireBufferFits(what, pixels * shared::kPathStateTexels * 16, false,
+                           pixels * shared::kPathStateTexels);
+    ctx_.requireBufferFits(what, pixels * 4, true, 0);    // each path queue
+    ctx_.requireBufferFits(what, pixels * 16, false, 0);  // the accumulation image
+  }
   settings_ = s;
   if (resize) {
     accum_ = std::make_unique<gpu::Image>(ctx_, s.width, s.height, VK_FORMAT_R32G32B32A32_SFLOAT,

@@ -41,6 +41,10 @@ TEST(BenchCli, QuickModeWritesReportJsonAndPlotsWithFiniteFigures) {
   }
   nlohmann::json j = nlohmann::json::parse(std::ifstream(dir / "out" / "bench.json"));
   j.erase("traversal");  // measured by bench_embree, not the quick mode
+  // Left out (null) by design while the reference's noise is over half unguided's error,
+  // as it is with a 16 spp reference.
+  for (auto& scene : j["scenes"])
+    scene["headline"].erase("equal_spp_relmse_ratio_without_reference_noise");
   std::vector<std::string> missing;
   collectMissing(j, "", missing);
   EXPECT_TRUE(missing.empty()) << missing.front();

@@ -125,6 +125,23 @@ TEST(RenderCli, AbsurdSettingsAreRejected) {
   }
 }
 
+// Requests larger than the device are refused before anything is allocated, naming what is
+// too big and the limit: a render whose path state exceeds the texel-buffer limit (any
+// conformant device allows at least 65536 texels; 16384 x 16384 pixels need 3.7e9), and a
+// Q table of a million points x 1024 strata (8 GB of sums against at least 128 MiB).
+TEST(RenderCli, RequestsLargerThanTheDeviceAreRefusedWithTheLimit) {
+  const std::string base =
+      "render --scene " + asset("cornell_box.gltf") + " --out /tmp/qlight_big.png --spp 1 ";
+  for (const char* big :
+       {"--width 16384 --height 16384", "--width 16 --height 16 --points 1000000 --strata 32x32"}) {
+    auto r = runQlight(base + big);
+    EXPECT_NE(r.exitCode, 0) << big << "\n" << r.output;
+    EXPECT_NE(r.output.find("is larger than"), std::string::npos) << big << "\n" << r.output;
+    EXPECT_NE(r.output.find("the device allows"), std::string::npos) << big << "\n" << r.output;
+    EXPECT_EQ(r.output.find("VK_ERROR"), std::string::npos) << big << "\n" << r.output;
+  }
+}
+
 // Non-finite numbers are refused like any other out-of-range value: one line naming the
 // option, before anything is loaded or rendered.
 TEST(DemoCli, NonFiniteNumbersAreRejected) {

@@ -7,6 +7,7 @@
 #include <array>
 #include <cstdio>
 #include <filesystem>
+#include <functional>
 #include <string>
 
 #define STB_IMAGE_STATIC
@@ -35,7 +36,10 @@ class WindowDemo : public ::testing::Test {
     if (!std::getenv("DISPLAY") && !XvfbServer::installed())
       GTEST_SKIP() << "no DISPLAY and Xvfb is not installed";
     std::string error;
-    display_ = server_.start(97, error);
+    // A display of its own per test: ctest runs the two at once, and a test that shared the
+    // other's server would lose it when the other ends.
+    const std::string name = ::testing::UnitTest::GetInstance()->current_test_info()->name();
+    display_ = server_.start(97 + int(std::hash<std::string>{}(name) % 64), error);
     ASSERT_FALSE(display_.empty()) << error;
     dir_ = fs::temp_directory_path() / ("qlight_window_test_" + std::to_string(getpid()));
     fs::remove_all(dir_);
