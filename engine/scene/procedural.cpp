@@ -73,4 +73,32 @@ void refreshBounds(SceneAsset& scene) {
   scene.bounds = worldBounds(scene, worldTransforms(scene, animate(scene, 0.0f)));
 }
 
+uint32_t addMeshAtOrigin(SceneAsset& scene, MeshAsset mesh) {
+  scene.meshes.push_back(std::move(mesh));
+  NodeAsset node;
+  node.mesh = int32_t(scene.meshes.size() - 1);
+  return addNode(scene, node);
+}
+
+uint32_t addCameraNode(SceneAsset& scene, float yfov, glm::vec3 position, glm::quat rotation) {
+  CameraAsset camera;
+  camera.yfov = yfov;
+  scene.cameras.push_back(camera);
+  NodeAsset node;
+  node.camera = int32_t(scene.cameras.size() - 1);
+  node.local.translation = position;
+  node.local.rotation = rotation;
+  return addNode(scene, node);
+}
+
+uint32_t addPointLightNode(SceneAsset& scene, float intensity, glm::vec3 position) {
+  LightAsset light;
+  light.intensity = intensity;
+  scene.lights.push_back(light);
+  NodeAsset node;
+  node.light = int32_t(scene.lights.size() - 1);
+  node.local.translation = position;
+  return addNode(scene, node);
+}
+
 }  // namespace qlight::scene

@@ -4,6 +4,7 @@
 
 #include <cstdint>
 #include <glm/glm.hpp>
+#include <glm/gtc/quaternion.hpp>
 
 #include "engine/scene/scene_asset.h"
 
@@ -32,6 +33,15 @@ void addBox(MeshAsset& mesh, const glm::mat4& worldFromBox, glm::vec3 halfExtent
 
 // Appends a node (as a root, or as the last child of parent) and returns its index.
 uint32_t addNode(SceneAsset& scene, NodeAsset node, int32_t parent = -1);
+
+// The mesh appended to the scene and placed by a root node at the origin; returns the node.
+uint32_t addMeshAtOrigin(SceneAsset& scene, MeshAsset mesh);
+// A perspective camera (vertical field of view yfov) at `position`, turned by `rotation`
+// (glTF cameras look down -z); returns its node.
+uint32_t addCameraNode(SceneAsset& scene, float yfov, glm::vec3 position,
+                       glm::quat rotation = glm::quat(1.0f, 0.0f, 0.0f, 0.0f));
+// A KHR_lights_punctual point light of `intensity` candela at `position`; returns its node.
+uint32_t addPointLightNode(SceneAsset& scene, float intensity, glm::vec3 position);
 
 // Recomputes every mesh's object-space bounds and the scene's world bounds at t = 0.
 void refreshBounds(SceneAsset& scene);

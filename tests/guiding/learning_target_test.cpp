@@ -55,25 +55,11 @@ scene::SceneAsset floorCeilingPointLight() {
       scene::addQuad(mesh, {x0, kCeiling, z0}, {x1, kCeiling, z0}, {x1, kCeiling, z1},
                      {x0, kCeiling, z1}, ceilingMat);  // faces -y
     }
-  s.meshes.push_back(mesh);
-  scene::NodeAsset planes;
-  planes.mesh = 0;
-  scene::addNode(s, planes);
-  scene::LightAsset light;
-  light.intensity = kIntensity;
-  s.lights.push_back(light);
-  scene::NodeAsset lightNode;
-  lightNode.light = 0;
-  lightNode.local.translation = {0.0f, kLightY, 0.0f};
-  scene::addNode(s, lightNode);
-  scene::CameraAsset cam;
-  cam.yfov = 0.01f;  // a ~1 cm patch of floor
-  s.cameras.push_back(cam);
-  scene::NodeAsset eye;
-  eye.camera = 0;
-  eye.local.translation = {0.0f, 1.0f, 0.0f};  // under the light, looking straight down
-  eye.local.rotation = glm::angleAxis(-glm::half_pi<float>(), glm::vec3(1, 0, 0));
-  scene::addNode(s, eye);
+  scene::addMeshAtOrigin(s, mesh);
+  scene::addPointLightNode(s, kIntensity, {0.0f, kLightY, 0.0f});
+  // A ~1 cm patch of floor, under the light, looking straight down.
+  scene::addCameraNode(s, 0.01f, {0.0f, 1.0f, 0.0f},
+                       glm::angleAxis(-glm::half_pi<float>(), glm::vec3(1, 0, 0)));
   scene::refreshBounds(s);
   return s;
 }

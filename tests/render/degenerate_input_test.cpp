@@ -49,17 +49,8 @@ scene::SceneAsset room(bool withDegenerates) {
     triangle({0.3f, -0.5f, 0.1f}, {0.3f, -0.5f, 0.1f}, {0.6f, -0.5f, 0.4f}, up, 0);
     triangle({-0.3f, 0.5f, 0.0f}, {0.0f, 0.5f, 0.0f}, {0.3f, 0.5f, 0.0f}, -up, 1);
   }
-  s.meshes.push_back(mesh);
-  scene::NodeAsset node;
-  node.mesh = 0;
-  scene::addNode(s, node);
-  scene::CameraAsset cam;
-  cam.yfov = 1.2f;
-  s.cameras.push_back(cam);
-  scene::NodeAsset eye;
-  eye.camera = 0;
-  eye.local.translation = {0.0f, 0.0f, 0.9f};
-  scene::addNode(s, eye);
+  scene::addMeshAtOrigin(s, mesh);
+  scene::addCameraNode(s, 1.2f, {0.0f, 0.0f, 0.9f});
   scene::refreshBounds(s);
   return s;
 }

@@ -18,18 +18,9 @@ inline scene::SceneAsset whiteFurnace(float albedo, float emission) {
   s.materials.push_back(m);
   scene::MeshAsset mesh;
   scene::addBox(mesh, glm::mat4(1.0f), glm::vec3(1.0f, 0.7f, 1.3f), 0, /*facingInward=*/true);
-  s.meshes.push_back(mesh);
-  scene::NodeAsset box;
-  box.mesh = 0;
-  scene::addNode(s, box);
-  scene::CameraAsset cam;
-  cam.yfov = 1.2f;
-  s.cameras.push_back(cam);
-  scene::NodeAsset eye;
-  eye.camera = 0;
-  eye.local.translation = glm::vec3(0.2f, -0.1f, 0.6f);
-  eye.local.rotation = glm::angleAxis(0.4f, glm::normalize(glm::vec3(0.3f, 1.0f, 0.1f)));
-  scene::addNode(s, eye);
+  scene::addMeshAtOrigin(s, mesh);
+  scene::addCameraNode(s, 1.2f, glm::vec3(0.2f, -0.1f, 0.6f),
+                       glm::angleAxis(0.4f, glm::normalize(glm::vec3(0.3f, 1.0f, 0.1f))));
   scene::refreshBounds(s);
   return s;
 }

@@ -36,27 +36,11 @@ scene::SceneAsset litFloor(bool oneQuad) {
                        {x0, 0, z0}, 0);
       }
   }
-  s.meshes.push_back(mesh);
-  scene::NodeAsset floor;
-  floor.mesh = 0;
-  scene::addNode(s, floor);
-  scene::LightAsset light;
-  light.intensity = 5.0f;
-  s.lights.push_back(light);
-  scene::NodeAsset lightNode;
-  lightNode.light = 0;
-  lightNode.local.translation = {0.0f, kLightHeight, 0.0f};
-  scene::addNode(s, lightNode);
-  scene::CameraAsset cam;
-  cam.yfov = 0.9f;
-  s.cameras.push_back(cam);
-  scene::NodeAsset eye;
-  eye.camera = 0;
+  scene::addMeshAtOrigin(s, mesh);
+  scene::addPointLightNode(s, 5.0f, {0.0f, kLightHeight, 0.0f});
   // 2 m up, 6 m back, looking down at the floor around the light: the view spans about
   // 1-10 m from the light, where its rays graze the floor at 2-17 degrees.
-  eye.local.translation = {0.0f, 2.0f, 6.0f};
-  eye.local.rotation = glm::angleAxis(-0.45f, glm::vec3(1, 0, 0));
-  scene::addNode(s, eye);
+  scene::addCameraNode(s, 0.9f, {0.0f, 2.0f, 6.0f}, glm::angleAxis(-0.45f, glm::vec3(1, 0, 0)));
   scene::refreshBounds(s);
   return s;
 }
