@@ -77,6 +77,12 @@ void Buffer::download(const Context& ctx, void* data, VkDeviceSize bytes,
 
 BufferView::BufferView(const Context& ctx, const Buffer& buffer, VkFormat format)
     : buffer_(&buffer) {
+  // Every format of ours is 4 bytes a channel: R32 (4 bytes a texel) or RGBA32 (16).
+  const uint64_t texelBytes =
+      format == VK_FORMAT_R32_UINT || format == VK_FORMAT_R32_SFLOAT || format == VK_FORMAT_R32_SINT
+          ? 4
+          : 16;
+  ctx.requireBufferFits(buffer.name(), buffer.size(), false, buffer.size() / texelBytes);
   VkDevice device = ctx.device();
   VkBufferViewCreateInfo info{VK_STRUCTURE_TYPE_BUFFER_VIEW_CREATE_INFO};
   info.buffer = buffer.handle();

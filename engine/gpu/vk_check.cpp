@@ -33,6 +33,17 @@ const char* vkResultName(VkResult result) {
 }
 
 void throwVkError(const char* call, VkResult result) {
+  // The results a user can act on get words of their own; the call stays for a bug report.
+  const std::string where = std::string(" (") + call + " -> " + vkResultName(result) + ")";
+  if (result == VK_ERROR_DEVICE_LOST)
+    throw std::runtime_error(
+        "the Vulkan device was lost (a driver crash or a GPU reset); "
+        "restart qlight" +
+        where);
+  if (result == VK_ERROR_OUT_OF_DEVICE_MEMORY || result == VK_ERROR_OUT_OF_HOST_MEMORY)
+    throw std::runtime_error(
+        "out of " + std::string(result == VK_ERROR_OUT_OF_DEVICE_MEMORY ? "device" : "host") +
+        " memory: lower the render size, --points or --strata" + where);
   throw std::runtime_error(std::string("Vulkan call failed: ") + call + " -> " +
                            vkResultName(result));
 }

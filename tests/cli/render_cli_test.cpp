@@ -142,6 +142,23 @@ TEST(RenderCli, RequestsLargerThanTheDeviceAreRefusedWithTheLimit) {
   }
 }
 
+// No Vulkan driver at all (the loader finds no ICD): one line that says what to install,
+// and a non-zero exit, for render, demo and bench alike.
+TEST(RenderCli, NoVulkanDeviceIsAOneLineError) {
+  for (const std::string args :
+       {"render --scene " + asset("cornell_box.gltf") + " --out /tmp/qlight_nodev.png --spp 1",
+        std::string("demo --headless --frames 1 --out /tmp/qlight_nodev"),
+        "bench --quick --scene " + asset("cornell_box.gltf") + " --out /tmp/qlight_nodev_bench"}) {
+    RunResult r = runCommand(
+        "VK_ICD_FILENAMES=/nonexistent/icd.json VK_DRIVER_FILES="
+        "/nonexistent/icd.json " +
+        std::string(QLIGHT_BINARY) + " " + args);
+    EXPECT_NE(r.exitCode, 0) << args << "\n" << r.output;
+    EXPECT_NE(r.output.find("no Vulkan"), std::string::npos) << args << "\n" << r.output;
+    EXPECT_EQ(r.output.find("VK_ERROR"), std::string::npos) << args << "\n" << r.output;
+  }
+}
+
 // Non-finite numbers are refused like any other out-of-range value: one line naming the
 // option, before anything is loaded or rendered.
 TEST(DemoCli, NonFiniteNumbersAreRejected) {
