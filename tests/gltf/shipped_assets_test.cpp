@@ -94,6 +94,20 @@ glm::dvec3 cameraPosition(const SceneAsset& scene) {
   return {};
 }
 
+// Room pairs split along x: the camera before `cameraBelowX`, every emitter's centroid beyond
+// `emittersBeyondX`. Returns the camera position.
+glm::dvec3 expectCameraAndLightsApart(const SceneAsset& scene,
+                                      const std::vector<Triangle>& triangles, double cameraBelowX,
+                                      double emittersBeyondX) {
+  const glm::dvec3 eye = cameraPosition(scene);
+  EXPECT_LT(eye.x, cameraBelowX);
+  for (const Triangle& t : triangles)
+    if (isEmitter(scene, t)) {
+      EXPECT_GT(t.centroid().x, emittersBeyondX);
+    }
+  return eye;
+}
+
 // Points on a triangular grid over each emitter triangle, with the triangle they lie on.
 std::vector<std::pair<glm::dvec3, const Triangle*>> emitterPoints(
     const SceneAsset& scene, const std::vector<Triangle>& triangles) {
@@ -291,12 +305,7 @@ TEST(ShippedAssets, DoorAjarHidesItsLightFromTheCamera) {
   const SceneAsset scene = loadGltf(kAssets / "door_ajar.gltf");
   const std::vector<Triangle> triangles = worldTriangles(scene, 0.0f);
   EXPECT_LE(triangles.size(), 400u);
-  const glm::dvec3 eye = cameraPosition(scene);
-  EXPECT_LT(eye.x, 4.0);  // room A
-  for (const Triangle& t : triangles)
-    if (isEmitter(scene, t)) {
-      EXPECT_GT(t.centroid().x, 4.1);  // room B
-    }
+  const glm::dvec3 eye = expectCameraAndLightsApart(scene, triangles, 4.0, 4.1);  // A, B
   EXPECT_FALSE(emitterPoints(scene, triangles).empty());
   EXPECT_EQ(emitterPointsSeen(scene, triangles, eye), 0u) << "emitter points seen from the camera";
 
@@ -310,13 +319,8 @@ TEST(ShippedAssets, CorridorLightsWhatTheCameraSeesOnlyAroundTheCorner) {
   const SceneAsset scene = loadGltf(kAssets / "corridor.gltf");
   const std::vector<Triangle> triangles = worldTriangles(scene, 0.0f);
   EXPECT_LT(triangles.size(), 300u);
-  const glm::dvec3 eye = cameraPosition(scene);
-  EXPECT_LT(eye.x, 1.5);
+  const glm::dvec3 eye = expectCameraAndLightsApart(scene, triangles, 1.5, 3.0);  // legs A, B
   EXPECT_GT(eye.z, -6.0);
-  for (const Triangle& t : triangles)
-    if (isEmitter(scene, t)) {
-      EXPECT_GT(t.centroid().x, 3.0);
-    }
   const DirectLight direct =
       directlyLitPointsSeen(scene, triangles, [](glm::dvec3) { return true; });
   EXPECT_GT(direct.seen, 2000u);  // nearly every pixel sees a surface
@@ -353,12 +357,7 @@ TEST(ShippedAssets, FurnishedRoomIsDetailedAndHidesItsLight) {
   const std::vector<Triangle> triangles = worldTriangles(scene, 0.0f);
   EXPECT_GT(triangles.size(), 150000u);
   EXPECT_LT(triangles.size(), 250000u);
-  const glm::dvec3 eye = cameraPosition(scene);
-  EXPECT_LT(eye.x, 6.0);  // room A
-  for (const Triangle& t : triangles)
-    if (isEmitter(scene, t)) {
-      EXPECT_GT(t.centroid().x, 6.1);  // room B
-    }
+  const glm::dvec3 eye = expectCameraAndLightsApart(scene, triangles, 6.0, 6.1);  // A, B
   EXPECT_EQ(emitterPointsSeen(scene, triangles, eye), 0u);
   EXPECT_NEAR(doorGap(scene, 6.0f, 2.3f), 0.12, 0.01);
 }
