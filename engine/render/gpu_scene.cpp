@@ -217,6 +217,8 @@ void GpuScene::update(const SceneDraw& draw) {
     glm::mat3 n = glm::transpose(glm::inverse(glm::mat3(d.worldFromObject)));
     for (int r = 0; r < 3; ++r)
       inst.normalFromObject[r] = glm::vec4(n[0][r], n[1][r], n[2][r], 0.0f);
+    const glm::mat3 m(d.worldFromObject);
+    inst.worldScale = std::max(std::max(glm::length(m[0]), glm::length(m[1])), glm::length(m[2]));
     inst.firstTriangle = meshFirstTriangle_[d.mesh];
     inst.mesh = d.mesh;
     instances.push_back(inst);

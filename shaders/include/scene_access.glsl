@@ -113,13 +113,10 @@ Surface resolveSurface(BvhHit hit, vec3 origin, vec3 dir) {
   GpuVertex a = vertexAt(tri.v0), b = vertexAt(tri.v1), c = vertexAt(tri.v2);
   float w = 1.0 - hit.u - hit.v;
   s.position = origin + hit.t * dir;
-  // The intersection ran in object space on these vertices and the ray's origin; the
-  // inverse transpose's rows have norms 1 / scale.
+  // The intersection ran in object space on these vertices and the ray's origin.
   vec3 m = max(max(abs(a.position), abs(b.position)), abs(c.position));
-  float rowMin = min(min(length(inst.normalFromObject[0].xyz), length(inst.normalFromObject[1].xyz)),
-                     length(inst.normalFromObject[2].xyz));
   vec3 o = abs(origin);
-  s.extent = max(max(m.x, max(m.y, m.z)) / max(rowMin, 1e-30), max(o.x, max(o.y, o.z)));
+  s.extent = max(max(m.x, max(m.y, m.z)) * inst.worldScale, max(o.x, max(o.y, o.z)));
   s.uv = w * vec2(a.u, a.v) + hit.u * vec2(b.u, b.v) + hit.v * vec2(c.u, c.v);
   s.material = tri.material;
   // M^-T (e1 x e2) is the world normal of the glTF front face, mirrored transforms included.

@@ -37,7 +37,8 @@ struct GpuInstance {
   vec4 normalFromObject[3];  // rows of transpose(inverse(M)) (xyz), w unused
   uint firstTriangle;
   uint mesh;
-  uint pad0, pad1;
+  float worldScale;  // the longest image of a unit axis under M: world size of object units
+  uint pad1;
 };
 QL_CHECK_SIZE(GpuInstance, 64);
 
