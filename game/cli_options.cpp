@@ -56,6 +56,9 @@ void addGuidingOptions(CLI::App& app, guiding::GuidingSettings& g, GuidingCli& c
   app.add_option("--strata", cli.strata, "hemisphere strata RxC, e.g. 8x8 or 16x8");
   app.add_option("--alpha-min", g.alphaMin, "learning rate floor (keeps tracking moving lights)");
   app.add_option("--alpha-max", g.alphaMax, "learning rate ceiling");
+  app.add_option("--half-life", g.halfLifeFrames,
+                 "tracking: frames after which what was learned counts half (0: never forget)")
+      ->check(finiteRange(0.0, 1e6));
   app.add_option("--points", g.pointBudget,
                  "cache point budget (default 0: one point per 8 paths per frame, 256..16384)");
   app.add_option("--select-probability", g.selectProbability,

@@ -126,6 +126,8 @@ std::function<int()> addDemoCommand(CLI::App& app, const CommonOptions& common) 
                   "window: fly forward for the first N frames, then stay still")
       ->check(CLI::Range(0, 1000000));
   args->settings.temporalBlend = 0.7f;  // the demo keeps a fading history of animated frames
+  // The demo's lights move: what was learned fades (the tracking study: docs/tracking.md).
+  args->guiding.halfLifeFrames = kDemoHalfLifeFrames;
   addRenderOptions(*cmd, args->settings);
   addGuidingOptions(*cmd, args->guiding, args->guidingCli);
   return [cmd, args, &common]() -> int {

@@ -7,6 +7,11 @@
 #include "shaders/shared/strata.h"
 
 namespace qlight::game {
+namespace {
+// Typed values (ctrl+click) stay in range too: an alpha-min of 0 must not reach the guide.
+constexpr ImGuiSliderFlags kClamp = ImGuiSliderFlags_AlwaysClamp;
+constexpr ImGuiSliderFlags kLogClamp = ImGuiSliderFlags_Logarithmic | kClamp;
+}  // namespace
 
 GuidingPanelResult drawGuidingSection(guiding::GuidingSettings& s,
                                       const guiding::GuidingStats& st) {
@@ -20,19 +25,22 @@ GuidingPanelResult drawGuidingSection(guiding::GuidingSettings& s,
   ImGui::Checkbox("from returns", &returns);  // else D&K's one-step TD target
   s.target = returns ? guiding::LearningTarget::Returns : guiding::LearningTarget::TdStep;
   int rows = int(s.rows), cols = int(s.cols);
-  ImGui::SliderInt("strata rows", &rows, 1, 32);
-  ImGui::SliderInt("strata cols", &cols, 1, 32);
+  ImGui::SliderInt("strata rows", &rows, 1, 32, "%d", kClamp);
+  ImGui::SliderInt("strata cols", &cols, 1, 32, "%d", kClamp);
   s.rows = uint32_t(rows);
   s.cols = uint32_t(std::min(cols, int(shared::kMaxStrata) / rows));  // R x C <= kMaxStrata
-  ImGui::SliderFloat("alpha min", &s.alphaMin, 1e-5f, 0.5f, "%.5f", ImGuiSliderFlags_Logarithmic);
-  ImGui::SliderFloat("alpha max", &s.alphaMax, 1e-4f, 1.0f, "%.4f", ImGuiSliderFlags_Logarithmic);
+  ImGui::SliderFloat("alpha min", &s.alphaMin, 1e-5f, 0.5f, "%.5f", kLogClamp);
+  ImGui::SliderFloat("alpha max", &s.alphaMax, 1e-4f, 1.0f, "%.4f", kLogClamp);
   s.alphaMax = std::max(s.alphaMax, s.alphaMin);
-  ImGui::SliderFloat("guided share", &s.selectProbability, 0.0f, 0.95f, "%.2f");
+  ImGui::SliderFloat("half-life (frames)", &s.halfLifeFrames, 0.0f, 200.0f,
+                     s.halfLifeFrames > 0 ? "%.0f" : "never forget", kClamp);
+  ImGui::SliderFloat("guided share", &s.selectProbability, 0.0f, 0.95f, "%.2f", kClamp);
   ImGui::Checkbox("learned light selection", &s.lightLearning);
-  ImGui::SliderFloat("light mix", &s.lightMix, 0.0f, 0.95f, "%.2f");
+  ImGui::SliderFloat("light mix", &s.lightMix, 0.0f, 0.95f, "%.2f", kClamp);
   r.changed = s.enabled != before.enabled || s.learn != before.learn || s.target != before.target ||
               s.rows != before.rows || s.cols != before.cols || s.alphaMin != before.alphaMin ||
-              s.alphaMax != before.alphaMax || s.selectProbability != before.selectProbability ||
+              s.alphaMax != before.alphaMax || s.halfLifeFrames != before.halfLifeFrames ||
+              s.selectProbability != before.selectProbability ||
               s.lightLearning != before.lightLearning || s.lightMix != before.lightMix;
   r.regenerate = ImGui::Button("regenerate points");
   ImGui::Text("%u cache points (%u from camera paths)", st.points, st.spawnedPoints);

@@ -65,9 +65,10 @@ bool drawRenderSection(render::RenderSettings& s, float& renderScale, DynamicRes
     changed = true;
   }
   int depth = int(s.maxDepth);
-  if (ImGui::SliderInt("max depth", &depth, 0, 32)) s.maxDepth = uint32_t(depth), changed = true;
+  if (ImGui::SliderInt("max depth", &depth, 0, 32, "%d", ImGuiSliderFlags_AlwaysClamp))
+    s.maxDepth = uint32_t(depth), changed = true;
   int spp = int(s.samplesPerFrame);
-  if (ImGui::SliderInt("samples/frame", &spp, 1, 16))
+  if (ImGui::SliderInt("samples/frame", &spp, 1, 16, "%d", ImGuiSliderFlags_AlwaysClamp))
     s.samplesPerFrame = uint32_t(spp), changed = true;
   changed |= ImGui::Checkbox("Russian roulette", &s.russianRoulette);
   changed |= ImGui::SliderFloat("exposure", &s.exposure, 0.05f, 20.0f, "%.2f",
@@ -101,14 +102,15 @@ bool drawSceneSection(SceneClock& clock) {
     return false;
   }
   if (ImGui::Button(clock.playing ? "pause" : "play")) clock.playing = !clock.playing;
-  bool moved = ImGui::SliderFloat("time", &clock.time, 0.0f, clock.duration, "%.2f s");
-  ImGui::SliderFloat("speed", &clock.speed, 0.0f, 4.0f, "%.2fx");
+  bool moved = ImGui::SliderFloat("time", &clock.time, 0.0f, clock.duration, "%.2f s",
+                                  ImGuiSliderFlags_AlwaysClamp);
+  ImGui::SliderFloat("speed", &clock.speed, 0.0f, 4.0f, "%.2fx", ImGuiSliderFlags_AlwaysClamp);
   return moved;
 }
 
 bool drawCameraSection(FreeCamera& camera) {
   ImGui::SliderFloat("speed##camera", &camera.speed, 0.01f, 100.0f, "%.2f /s",
-                     ImGuiSliderFlags_Logarithmic);
+                     ImGuiSliderFlags_Logarithmic | ImGuiSliderFlags_AlwaysClamp);
   ImGui::Text("position %.2f %.2f %.2f", camera.position.x, camera.position.y, camera.position.z);
   ImGui::Text("yaw %.0f  pitch %.0f deg", camera.yaw * 57.2958f, camera.pitch * 57.2958f);
   return ImGui::Button("reset (R)");

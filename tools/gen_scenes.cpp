@@ -234,17 +234,14 @@ void addDoor(SceneAsset& scene, const RoomPair& r, float halfHeight, float gap, 
 
 // Two 4 m x 4 m rooms, 2.5 m high, side by side along x, joined by an 80 cm doorway in a
 // 10 cm wall. The door slab, hinged on the doorway's +z side, is swung 7.2 degrees into room
-// A: its free edge stands 10 cm from the jamb. The only light, a ceiling panel in room B,
-// cannot be seen from the camera in room A; every light path to the camera passes the gap.
-SceneAsset doorAjar() {
+// A: its free edge stands 10 cm from the jamb. Without its light and camera (the door-ajar
+// scenes add them, in this order).
+SceneAsset doorAjarRooms() {
   SceneAsset scene;
   const uint32_t wall = addMaterial(scene, "wall", vec3(0.75f));
   const uint32_t floor = addMaterial(scene, "floor", vec3(0.5f, 0.45f, 0.4f));
   const uint32_t wood = addMaterial(scene, "door", vec3(0.55f, 0.38f, 0.22f));
   const uint32_t furniture = addMaterial(scene, "furniture", vec3(0.3f, 0.4f, 0.6f));
-  // Bright: only a sliver of it reaches the first room through the gap, and that room
-  // should render at an ordinary exposure (radiance ~0.1, where relative MSE is meaningful).
-  const uint32_t light = addMaterial(scene, "light", vec3(0.78f), vec3(2000.0f, 1840.0f, 1600.0f));
 
   const RoomPair pair{2.5f, 4.0f, 4.0f, 4.1f, 8.1f, 1.6f, 2.4f, 2.0f};
   addRoomPairShell(scene, pair, wall, floor, floor);
@@ -258,12 +255,71 @@ SceneAsset doorAjar() {
   addBox(blocks, placed({0.5f, 0.6f, 0.5f}, 0.0f), {0.35f, 0.6f, 0.35f}, furniture);
   addBox(blocks, placed({6.5f, 0.5f, 1.2f}, -20.0f), {0.5f, 0.5f, 0.5f}, furniture);
   addMeshNode(scene, "furniture", addMesh(scene, blocks));
-
-  // The light: 60 cm square on room B's ceiling, far from the door's line of sight.
-  addCeilingLight(scene, pair.height, {6.6f, 2.9f}, {7.2f, 3.5f}, light);
-
-  addCamera(scene, {0.4f, 1.5f, 3.6f}, {4.0f, 1.0f, 1.8f}, 1.0f, 16.0f / 9.0f);
   return scene;
+}
+
+void addDoorAjarCamera(SceneAsset& scene) {
+  addCamera(scene, {0.4f, 1.5f, 3.6f}, {4.0f, 1.0f, 1.8f}, 1.0f, 16.0f / 9.0f);
+}
+
+// Bright: only a sliver of it reaches the first room through the gap, and that room
+// should render at an ordinary exposure (radiance ~0.1, where relative MSE is meaningful).
+uint32_t doorAjarLightMaterial(SceneAsset& scene) {
+  return addMaterial(scene, "light", vec3(0.78f), vec3(2000.0f, 1840.0f, 1600.0f));
+}
+
+// The only light, a ceiling panel in room B, cannot be seen from the camera in room A; every
+// light path to the camera passes the gap.
+SceneAsset doorAjar() {
+  SceneAsset scene = doorAjarRooms();
+  // 60 cm square on room B's ceiling, far from the door's line of sight.
+  addCeilingLight(scene, 2.5f, {6.6f, 2.9f}, {7.2f, 3.5f}, doorAjarLightMaterial(scene));
+  addDoorAjarCamera(scene);
+  return scene;
+}
+
+// The door-ajar rooms with their ceiling panel on a node that `keys` move over (x, z) on
+// the ceiling: the scenes that show guiding following a light (the demo's default scene
+// and the tracking study).
+SceneAsset doorAjarAnimated(const std::string& name, Interpolation interpolation,
+                            const std::vector<std::pair<float, glm::vec2>>& keys) {
+  SceneAsset scene = doorAjarRooms();
+  const uint32_t light = doorAjarLightMaterial(scene);
+  MeshAsset lamp;
+  lamp.name = name;
+  const float y = -0.005f;  // under the ceiling, in the node's frame at ceiling height
+  addQuad(lamp, {-0.3f, y, -0.3f}, {0.3f, y, -0.3f}, {0.3f, y, 0.3f}, {-0.3f, y, 0.3f}, light);
+  const glm::vec2 start = keys.front().second;
+  const uint32_t node = addMeshNode(scene, name, addMesh(scene, lamp), {start.x, 2.5f, start.y});
+  AnimationChannel path;
+  path.node = node;
+  path.path = AnimationPath::Translation;
+  path.interpolation = interpolation;
+  for (const auto& [time, at] : keys) {
+    path.times.push_back(time);
+    path.values.push_back({at.x, 2.5f, at.y, 0.0f});
+  }
+  AnimationAsset animation;
+  animation.name = name;
+  animation.duration = keys.back().first;
+  animation.channels.push_back(path);
+  scene.animations.push_back(animation);
+  addDoorAjarCamera(scene);
+  return scene;
+}
+
+// The demo's default: the panel glides between room B's far corner and the dividing wall
+// beside the door and back, every 8 s (LINEAR keys, the last equal to the first).
+SceneAsset doorAjarMovingLight() {
+  return doorAjarAnimated("moving_light", Interpolation::Linear,
+                          {{0.0f, {6.9f, 3.2f}}, {4.0f, {4.6f, 0.8f}}, {8.0f, {6.9f, 3.2f}}});
+}
+
+// The tracking study's jump: the panel stands 6 s in room B's far corner, then 6 s by the
+// dividing wall beside the door (STEP keys).
+SceneAsset doorAjarJumpingLight() {
+  return doorAjarAnimated("jumping_light", Interpolation::Step,
+                          {{0.0f, {6.9f, 3.2f}}, {6.0f, {4.6f, 0.8f}}, {12.0f, {4.6f, 0.8f}}});
 }
 
 // Light i of n: a repeatable strength spread over two decades, and a slight tint.
@@ -972,6 +1028,8 @@ int main(int argc, char** argv) {
     failures += write(out, "cornell_box.gltf", cornellBox());
     failures += write(out, "door_ajar.gltf", doorAjar());
     failures += write(out, "animated_light.gltf", animatedLight());
+    failures += write(out, "door_ajar_moving_light.gltf", doorAjarMovingLight());
+    failures += write(out, "door_ajar_jumping_light.gltf", doorAjarJumpingLight());
     failures += write(out, "many_lights.gltf", manyLights());
     failures += write(out, "corridor.gltf", corridor());
     failures += write(out, "glossy_floor.gltf", glossyFloor());

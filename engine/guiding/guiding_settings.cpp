@@ -17,6 +17,8 @@ void validate(const GuidingSettings& s) {
       s.alphaMin > s.alphaMax)
     throw std::invalid_argument(
         "learning rate bounds must satisfy 0 < alpha-min <= alpha-max <= 1");
+  if (!finite(s.halfLifeFrames) || s.halfLifeFrames < 0 || s.halfLifeFrames > 1e6f)
+    throw std::invalid_argument("half-life must be 0 (never forget) to 1e6 frames");
   if (!finite(s.selectProbability) || s.selectProbability < 0 || s.selectProbability > 0.95f)
     throw std::invalid_argument(
         "guided selection probability must be in [0, 0.95] (BSDF sampling keeps the rest)");

@@ -25,6 +25,11 @@ struct GuidingSettings {
   // there is nothing to wait out (van Mastrigt's 0.05 suits bootstrapped TD targets; with
   // returns it left Q near its initial value for the first ~20 updates of each stratum).
   float alphaMax = 1.0f;
+  // Tracking (issue 12): every learning pass ages what a point has learned, so the visit
+  // counts behind the learning rate and the point's confidence halve after this many frames
+  // without more data and Q follows a light that moves. 0 remembers everything (the
+  // right choice where nothing moves: the offline render and the bench).
+  float halfLifeFrames = 0.0f;
   // Guided vs BSDF sampling (times the diffuse share and the point's confidence). On the
   // door scene without NEE, 0.5 gives relMSE 5.95 vs 10.2 unguided (3 seeds); 0.8 finds the
   // light more often but lets fireflies through (BSDF-sampled paths in low-Q directions).

@@ -20,6 +20,7 @@ namespace qlight::guiding {
 // One learned table (Q over strata, or V over lights) and its frame accumulators.
 struct LearnedTable {
   std::unique_ptr<gpu::Buffer> values, visits, cdf, sums, counts;
+  std::unique_ptr<gpu::Buffer> rowPasses;    // per row: the learning pass that last updated it
   std::unique_ptr<gpu::BufferView> cdfView;  // the path passes read the CDF as a texel buffer
   uint32_t rowLength = 0;                    // entries per slot
 
@@ -75,7 +76,7 @@ class LearnedTables {
   std::unique_ptr<gpu::Buffer> pointUpdates_;
   std::unique_ptr<gpu::BufferView> pointUpdatesView_;
   uint32_t slots_ = 0, lights_ = 0;
-  uint32_t lightFrame_ = 0;  // learning passes so far, for the light-value update interval
+  uint32_t learningPasses_ = 0;  // for the light-value update interval and the rows' ages
 };
 
 }  // namespace qlight::guiding

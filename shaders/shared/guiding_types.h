@@ -69,6 +69,7 @@ QL_FN uint gridCellHash(ivec3 c, uint hashSize) {
 #define QL_Q_UPDATE_BIND_SUMS 3
 #define QL_Q_UPDATE_BIND_COUNTS 4
 #define QL_Q_UPDATE_BIND_POINT_UPDATES 5
+#define QL_Q_UPDATE_BIND_ROW_PASSES 6  // the learning pass that last updated each row
 #define QL_Q_UPDATE_GROUP_SIZE 64
 
 struct TableUpdatePush {
@@ -81,8 +82,10 @@ struct TableUpdatePush {
   float alphaMin;
   float alphaMax;
   float floorValue;
-  uint everyRow;  // 1: rebuild the CDF of rows without targets too (after a reset)
-  uint pad0, pad1, pad2;
+  uint everyRow;        // 1: rebuild the CDF of rows without targets too (after a reset)
+  uint pass;            // learning passes so far (the age of a row is pass - its last pass)
+  float forgetPerPass;  // log2 of what a pass keeps of the visit counts: -1 / half-life (0: all)
+  uint pad0;
 };
 QL_CHECK_SIZE(TableUpdatePush, 48);
 
@@ -146,6 +149,13 @@ QL_FN float retainedAfterUpdates(uint n0, uint m, float alphaMin, float alphaMax
 
 // One entry's update from a frame's m targets summing to targetSum. A
 // non-finite result keeps the old value: NaN or Inf never enters a table.
+// What a row keeps of its visit counts (and its point's confidence) after `age` learning
+// passes: 2^(-age / half-life).
+QL_FN uint agedCount(uint count, uint age, float forgetPerPass) {
+  if (forgetPerPass == 0.0f || age == 0u) return count;
+  return uint(float(count) * exp2(forgetPerPass * float(age)));
+}
+
 QL_FN float updatedQ(float q, float targetSum, uint m, uint visits, float alphaMin, float alphaMax,
                      float qFloor) {
   if (m == 0u) return max(q, qFloor);

@@ -1,7 +1,8 @@
 // The GPU learning pass (update and CDF per row) on a synthetic table equals a
 // CPU reference of the formula (D&K eq. 5 with the batched learning rate)
 // applied to the fixed-point target sums; the largest sum stays finite; rows
-// without targets are left alone unless every row is asked for.
+// without targets are left alone unless every row is asked for; with a half-life, the
+// visit counts and the point's confidence age by the passes since the row's last update.
 #include <cmath>
 #include <limits>
 #include <random>
@@ -41,11 +42,13 @@ TEST_F(QUpdateGpu, UpdateAndCdfMatchCpuReference) {
   sums[7] = shared::fixedSumToFloat(0xffffffffu, 0xffffffffu);
 
   gpu::Buffer bq(ctx(), n * 4, "q"), bv(ctx(), n * 4, "visits"), bc(ctx(), n * 4, "cdf"),
-      bs(ctx(), n * 8, "sums"), bn(ctx(), n * 4, "counts"), bp(ctx(), points * 4, "pointUpdates");
+      bs(ctx(), n * 8, "sums"), bn(ctx(), n * 4, "counts"), bp(ctx(), points * 4, "pointUpdates"),
+      br(ctx(), points * 4, "rowPasses");
   std::vector<uint32_t> noUpdates(points, 0);
   const float kUntouched = -1.0f;  // CDF sentinel: rows the pass skips keep it
   bc.upload<float>(ctx(), std::vector<float>(n, kUntouched));
   bp.upload<uint32_t>(ctx(), noUpdates);
+  br.upload<uint32_t>(ctx(), noUpdates);
   bq.upload<float>(ctx(), q);
   bv.upload<uint32_t>(ctx(), visits);
   bs.upload<uint32_t>(ctx(), fixedSums);
@@ -62,6 +65,7 @@ TEST_F(QUpdateGpu, UpdateAndCdfMatchCpuReference) {
           .write(QL_Q_UPDATE_BIND_SUMS, bs)
           .write(QL_Q_UPDATE_BIND_COUNTS, bn)
           .write(QL_Q_UPDATE_BIND_POINT_UPDATES, bp)
+          .write(QL_Q_UPDATE_BIND_ROW_PASSES, br)
           .push(push)
           .dispatch((points + QL_Q_UPDATE_GROUP_SIZE - 1) / QL_Q_UPDATE_GROUP_SIZE);
       rec.finish();
@@ -119,6 +123,67 @@ TEST_F(QUpdateGpu, UpdateAndCdfMatchCpuReference) {
     }
   }
   EXPECT_TRUE(std::isfinite(gq[7]));
+}
+
+// Tracking: a row updated at pass 10 that was last updated at pass 2 first ages its visit
+// counts and its point's update count by 2^(-8 / half-life), then learns with the aged
+// counts (a higher learning rate); a row without targets keeps its counts until it is used.
+TEST_F(QUpdateGpu, HalfLifeAgesCountsByThePassesSinceTheRowsLastUpdate) {
+  const uint32_t points = 2, rows = 2, cols = 2, strata = rows * cols, n = points * strata;
+  const float aMin = 1e-4f, aMax = 1.0f, qFloor = 1e-4f, halfLife = 5.0f;
+  const uint32_t lastPass = 2, pass = 10;
+  std::vector<float> q{1.0f, 1.0f, 1.0f, 1.0f, 0.5f, 0.5f, 0.5f, 0.5f};
+  std::vector<uint32_t> visits{1000, 400, 0, 77, 1000, 1000, 1000, 1000};
+  std::vector<uint32_t> counts{4, 0, 2, 0, 0, 0, 0, 0};  // point 1: no targets
+  std::vector<uint32_t> fixedSums(2 * n, 0), pointUpdates{900, 900}, rowPasses{lastPass, lastPass};
+  fixedSums[0] = uint32_t(4 * 3.0 * shared::kTargetScale);  // 4 targets of 3
+  fixedSums[4] = uint32_t(2 * 2.0 * shared::kTargetScale);  // 2 targets of 2
+  gpu::Buffer bq(ctx(), n * 4, "q"), bv(ctx(), n * 4, "visits"), bc(ctx(), n * 4, "cdf"),
+      bs(ctx(), n * 8, "sums"), bn(ctx(), n * 4, "counts"), bp(ctx(), points * 4, "pointUpdates"),
+      br(ctx(), points * 4, "rowPasses");
+  bq.upload<float>(ctx(), q);
+  bv.upload<uint32_t>(ctx(), visits);
+  bc.upload<float>(ctx(), std::vector<float>(n, 0.0f));
+  bs.upload<uint32_t>(ctx(), fixedSums);
+  bn.upload<uint32_t>(ctx(), counts);
+  bp.upload<uint32_t>(ctx(), pointUpdates);
+  br.upload<uint32_t>(ctx(), rowPasses);
+  gpu::ComputePipeline update(ctx(), "q_update");
+  ctx().submitAndWait([&](VkCommandBuffer cmd) {
+    gpu::PassRecorder rec(ctx(), cmd);
+    shared::TableUpdatePush push{points, strata,          rows, cols, 1, aMin, aMax, qFloor, 0,
+                                 pass,   -1.0f / halfLife};
+    rec.pass("q_update", update)
+        .write(QL_Q_UPDATE_BIND_VALUES, bq)
+        .write(QL_Q_UPDATE_BIND_VISITS, bv)
+        .write(QL_Q_UPDATE_BIND_CDF, bc)
+        .write(QL_Q_UPDATE_BIND_SUMS, bs)
+        .write(QL_Q_UPDATE_BIND_COUNTS, bn)
+        .write(QL_Q_UPDATE_BIND_POINT_UPDATES, bp)
+        .write(QL_Q_UPDATE_BIND_ROW_PASSES, br)
+        .push(push)
+        .dispatch(1);
+    rec.finish();
+  });
+  auto gq = bq.read<float>(ctx());
+  auto gv = bv.read<uint32_t>(ctx());
+  auto gp = bp.read<uint32_t>(ctx());
+  auto gr = br.read<uint32_t>(ctx());
+  const double keep = std::exp2(-8.0 / halfLife);  // 0.33
+  auto aged = [&](uint32_t c) { return uint32_t(double(c) * keep); };
+  EXPECT_EQ(gr[0], pass);
+  EXPECT_EQ(gr[1], lastPass) << "a row without targets is not touched";
+  EXPECT_EQ(gp[0], aged(900) + 6);
+  EXPECT_EQ(gp[1], 900u);
+  for (uint32_t k = 0; k < strata; ++k) EXPECT_EQ(gv[k], aged(visits[k]) + counts[k]) << k;
+  for (uint32_t k = strata; k < n; ++k) EXPECT_EQ(gv[k], visits[k]) << k;
+  // Stratum 0: 4 targets of 3 after 1000 visits aged to 329: the running mean over 333.
+  const double n0 = aged(1000);
+  EXPECT_NEAR(gq[0], (n0 * 1.0 + 4 * 3.0) / (n0 + 4), 1e-5);
+  // Without the half-life the same update would have moved Q about 3x less.
+  EXPECT_GT(gq[0] - 1.0, 2.5 * ((1000.0 + 12.0) / 1004.0 - 1.0));
+  EXPECT_NEAR(gq[2], 2.0f, 1e-6) << "a first visit takes the targets' mean";
+  EXPECT_FLOAT_EQ(gq[1], 1.0f);
 }
 
 }  // namespace
