@@ -278,31 +278,44 @@ SceneAsset doorAjar() {
   return scene;
 }
 
-// The door-ajar rooms with their ceiling panel on a node that `keys` move over (x, z) on
-// the ceiling: the scenes that show guiding following a light (the demo's default scene
+// A key of the door-ajar light's animation: where on the ceiling (x, z) and how large.
+struct LightKey {
+  float time;
+  glm::vec2 at;
+  float scale = 1.0f;
+};
+
+// The door-ajar rooms with their ceiling panel on a node that `keys` move over the ceiling
+// (and scale): the scenes that show guiding following a light (the demo's default scene
 // and the tracking study).
 SceneAsset doorAjarAnimated(const std::string& name, Interpolation interpolation,
-                            const std::vector<std::pair<float, glm::vec2>>& keys) {
+                            const std::vector<LightKey>& keys) {
   SceneAsset scene = doorAjarRooms();
   const uint32_t light = doorAjarLightMaterial(scene);
   MeshAsset lamp;
   lamp.name = name;
   const float y = -0.005f;  // under the ceiling, in the node's frame at ceiling height
   addQuad(lamp, {-0.3f, y, -0.3f}, {0.3f, y, -0.3f}, {0.3f, y, 0.3f}, {-0.3f, y, 0.3f}, light);
-  const glm::vec2 start = keys.front().second;
+  const glm::vec2 start = keys.front().at;
   const uint32_t node = addMeshNode(scene, name, addMesh(scene, lamp), {start.x, 2.5f, start.y});
-  AnimationChannel path;
-  path.node = node;
-  path.path = AnimationPath::Translation;
-  path.interpolation = interpolation;
-  for (const auto& [time, at] : keys) {
-    path.times.push_back(time);
-    path.values.push_back({at.x, 2.5f, at.y, 0.0f});
+  AnimationChannel move, size;
+  move.node = size.node = node;
+  move.path = AnimationPath::Translation;
+  size.path = AnimationPath::Scale;
+  move.interpolation = size.interpolation = interpolation;
+  bool scaled = false;
+  for (const LightKey& k : keys) {
+    move.times.push_back(k.time);
+    move.values.push_back({k.at.x, 2.5f, k.at.y, 0.0f});
+    size.times.push_back(k.time);
+    size.values.push_back({k.scale, 1.0f, k.scale, 0.0f});
+    scaled |= k.scale != 1.0f;
   }
   AnimationAsset animation;
   animation.name = name;
-  animation.duration = keys.back().first;
-  animation.channels.push_back(path);
+  animation.duration = keys.back().time;
+  animation.channels.push_back(move);
+  if (scaled) animation.channels.push_back(size);
   scene.animations.push_back(animation);
   addDoorAjarCamera(scene);
   return scene;
@@ -315,11 +328,14 @@ SceneAsset doorAjarMovingLight() {
                           {{0.0f, {6.9f, 3.2f}}, {4.0f, {4.6f, 0.8f}}, {8.0f, {6.9f, 3.2f}}});
 }
 
-// The tracking study's jump: the panel stands 6 s in room B's far corner, then 6 s by the
-// dividing wall beside the door (STEP keys).
+// The tracking study's jump: the panel stands 6 s in room B's far corner, then 6 s on room
+// A's ceiling, shrunk to 3 cm so room A is not flooded (STEP keys): where room A's light came
+// through the gap it now comes from above, and back, so what each point learned is wrong at
+// once.
 SceneAsset doorAjarJumpingLight() {
-  return doorAjarAnimated("jumping_light", Interpolation::Step,
-                          {{0.0f, {6.9f, 3.2f}}, {6.0f, {4.6f, 0.8f}}, {12.0f, {4.6f, 0.8f}}});
+  return doorAjarAnimated(
+      "jumping_light", Interpolation::Step,
+      {{0.0f, {6.9f, 3.2f}}, {6.0f, {2.0f, 1.2f}, 0.05f}, {12.0f, {2.0f, 1.2f}, 0.05f}});
 }
 
 // Light i of n: a repeatable strength spread over two decades, and a slight tint.

@@ -11,7 +11,9 @@
 #include "engine/gltf/gltf_loader.h"
 #include "engine/session/stats_json.h"
 #include "game/bench/bench_report.h"
+#include "game/bench/tracking_study.h"
 #include "game/context_setup.h"
+#include "game/demo_command.h"
 #include "game/shipped_scenes.h"
 
 namespace qlight::game {
@@ -28,9 +30,11 @@ struct BenchArgs {
   std::optional<double> budgetSeconds;  // per method and scene; default: the mode's
   uint32_t referenceSpp = 0;
   uint32_t width = 0, height = 0;
-  uint32_t sppPerFrame = 2;
-  std::string traversal;  // bench_traversal_vs_embree's JSON to include
+  uint32_t sppPerFrame = 0;  // 0: the mode's (bench 2, tracking 1)
+  std::string traversal;     // bench_traversal_vs_embree's JSON to include
   bool report = true;
+  bool tracking = false;  // the tracking study instead of the equal-time comparison
+  uint32_t seeds = 0;     // tracking: runs per method (quick 2, full 8)
   // The methods' renderer and guiding settings (each method sets guiding on or off and
   // light learning itself).
   render::RenderSettings render;
@@ -45,6 +49,7 @@ void applyModeDefaults(BenchArgs& a) {
   if (a.referenceSpp == 0) a.referenceSpp = a.quick ? 256 : 2048;
   if (a.width == 0) a.width = a.quick ? 96 : 256;
   if (a.height == 0) a.height = a.quick ? 54 : 144;
+  if (a.sppPerFrame == 0) a.sppPerFrame = 2;
 }
 
 fs::path cacheDirectory(const BenchArgs& a) {
@@ -105,7 +110,41 @@ std::string isoDate() {
   return text;
 }
 
+// The tracking study: 1 spp per frame (a realtime frame), the demo's half-life.
+int runTracking(BenchArgs a, const CommonOptions& common) {
+  TrackingStudySettings t;
+  t.render = a.render;
+  t.render.width = a.width != 0 ? a.width : a.quick ? 64 : 128;
+  t.render.height = a.height != 0 ? a.height : a.quick ? 36 : 72;
+  t.render.samplesPerFrame = a.sppPerFrame != 0 ? a.sppPerFrame : 1;
+  t.guiding = a.guiding;
+  t.trackingHalfLife =
+      a.guiding.halfLifeFrames > 0 ? a.guiding.halfLifeFrames : kDemoHalfLifeFrames;
+  t.seeds = a.seeds != 0 ? a.seeds : a.quick ? 2 : 8;
+  t.referenceSpp = a.referenceSpp != 0 ? a.referenceSpp : a.quick ? 32 : 128;
+  t.cacheDir = cacheDirectory(a);
+  a.budgetSeconds = 1.0;  // unused by the study
+  a.referenceSpp = t.referenceSpp;
+  validate(a, {});
+  auto ctx = createContext(common, /*windowed=*/false);
+  const nlohmann::json j = runTrackingStudy(*ctx, t, a.out);
+  if (a.report) runReportScript("tracking_plot.py", a.out);
+  std::printf("qlight bench --tracking: %ux%u, %u spp per frame, %u seeds; %s/tracking.json\n",
+              t.render.width, t.render.height, t.render.samplesPerFrame, t.seeds, a.out.c_str());
+  for (const auto& c : j["cases"])
+    for (const auto& m : c["methods"]) {
+      std::printf("  %-7s %-13s mean relMSE %s of unguided's", c["name"].get<std::string>().c_str(),
+                  m["name"].get<std::string>().c_str(), m["mean_ratio_to_unguided"].dump().c_str());
+      for (const auto& r : m["recovery"])
+        std::printf(", jump at %s: back in %s frames", r["jump_frame"].dump().c_str(),
+                    r["frames_to_within_1_25"].dump().c_str());
+      std::printf("\n");
+    }
+  return finishContext(*ctx);
+}
+
 int runBench(BenchArgs a, const CommonOptions& common) {
+  if (a.tracking) return runTracking(a, common);
   applyModeDefaults(a);
   std::vector<std::string> scenes;
   for (const std::string& s : a.scenes) scenes.push_back(resolveScene(s));
@@ -207,15 +246,14 @@ std::function<int()> addBenchCommand(CLI::App& app, const CommonOptions& common)
   cmd->add_option("--budget", args->budgetSeconds,
                   "render seconds per method and scene (quick 2.5, full 40)");
   cmd->add_option("--reference-spp", args->referenceSpp,
-                  "reference samples per pixel (quick 256, full 2048)");
-  cmd->add_option("--width", args->width, "image width (quick 96, full 256)")
+                  "reference samples per pixel (quick 256, full 2048; tracking 32, 128)");
+  cmd->add_option("--width", args->width, "image width (quick 96, full 256; tracking 64, 128)")
       ->check(CLI::Range(1, 16384));
-  cmd->add_option("--height", args->height, "image height (quick 54, full 144)")
+  cmd->add_option("--height", args->height, "image height (quick 54, full 144; tracking 36, 72)")
       ->check(CLI::Range(1, 16384));
   cmd->add_option("--spp-per-frame", args->sppPerFrame,
-                  "samples per pixel per frame (learning runs between frames)")
-      ->check(CLI::Range(1, 4096))
-      ->capture_default_str();
+                  "samples per pixel per frame, learning runs between frames (2; tracking 1)")
+      ->check(CLI::Range(1, 4096));
   cmd->add_option("--cache", args->cache,
                   "reference cache folder (default ~/.cache/qlight/references)");
   addTracingOptions(*cmd, args->render);  // the reference keeps MIS + RR
@@ -223,6 +261,11 @@ std::function<int()> addBenchCommand(CLI::App& app, const CommonOptions& common)
   cmd->add_option("--traversal", args->traversal,
                   "include this bench_traversal_vs_embree --out JSON in the report");
   cmd->add_flag("!--no-report", args->report, "skip tools/bench_report.py (JSON and images only)");
+  cmd->add_flag("--tracking", args->tracking,
+                "the tracking study instead: a jumping and a moving light, per-frame error "
+                "(tracking.json, tracking.png)");
+  cmd->add_option("--seeds", args->seeds, "tracking: runs per method (quick 2, full 8)")
+      ->check(CLI::Range(1, 1000));
   return [cmd, args, &common]() -> int {
     if (!cmd->parsed()) return -1;
     finishGuidingOptions(args->guidingCli, args->guiding, args->render);

@@ -40,7 +40,7 @@ struct Fnv1a {
 };
 
 std::string cacheKey(const std::filesystem::path& sceneFile, const render::RenderSettings& s,
-                     uint32_t spp) {
+                     uint32_t spp, float time) {
   Fnv1a f;
   std::ifstream in(sceneFile, std::ios::binary);
   std::string bytes((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
@@ -52,6 +52,7 @@ std::string cacheKey(const std::filesystem::path& sceneFile, const render::Rende
   f.add(s.estimator);
   f.add(s.russianRoulette);
   f.add(spp);
+  if (time != 0.0f) f.add(time);  // keys of time-0 references stay as they were
   std::string version = rendererVersion();
   f.add(version.data(), version.size());
   return f.hex();
@@ -79,8 +80,8 @@ Reference loadOrRenderReference(const gpu::Context& ctx, const scene::SceneAsset
                                 const std::filesystem::path& sceneFile,
                                 const render::RenderSettings& settings, uint32_t spp,
                                 const std::filesystem::path& cacheDir, ProgressBar& progress,
-                                double progressBase, const std::string& sceneName) {
-  const std::string key = cacheKey(sceneFile, settings, spp);
+                                double progressBase, const std::string& sceneName, float time) {
+  const std::string key = cacheKey(sceneFile, settings, spp, time);
   const auto imagePath = cacheDir / (key + ".pfm"), infoPath = cacheDir / (key + ".json");
   Reference ref;
   ref.spp = spp;
@@ -103,7 +104,7 @@ Reference loadOrRenderReference(const gpu::Context& ctx, const scene::SceneAsset
     render::RenderSettings half = settings;
     half.seed = settings.seed + 1000003u * uint32_t(h + 1);  // never the methods' seed
     half.samplesPerFrame = 16;  // no learning: large batches, few submissions
-    halves[h] = session::renderScene(ctx, asset, half, spp / 2, 0.0f).image;
+    halves[h] = session::renderScene(ctx, asset, half, spp / 2, time).image;
   }
   ref.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   ref.image = average(halves[0], halves[1]);

@@ -25,10 +25,12 @@ struct Reference {
 // of a host-side version number bumped when the host changes what a render computes.
 std::string rendererVersion();
 
+// The scene at animation time `time`.
 Reference loadOrRenderReference(const gpu::Context& ctx, const scene::SceneAsset& asset,
                                 const std::filesystem::path& sceneFile,
                                 const render::RenderSettings& settings, uint32_t spp,
                                 const std::filesystem::path& cacheDir, ProgressBar& progress,
-                                double progressBase, const std::string& sceneName);
+                                double progressBase, const std::string& sceneName,
+                                float time = 0.0f);
 
 }  // namespace qlight::game::bench

@@ -106,14 +106,16 @@ nlohmann::json sceneJson(const SceneBench& s, const fs::path& outDir) {
             {"time_per_sample_ratio", perSample}}}};
 }
 
-void writeReport(const fs::path& outDir) {
-  const fs::path script = fs::path(QLIGHT_SOURCE_DIR) / "tools" / "bench_report.py";
+void runReportScript(const std::string& scriptName, const fs::path& outDir) {
+  const fs::path script = fs::path(QLIGHT_SOURCE_DIR) / "tools" / scriptName;
   // Debian's python3 has python3-matplotlib; another python3 earlier on PATH may not.
   const std::string python = fs::exists("/usr/bin/python3") ? "/usr/bin/python3" : "python3";
   const std::string command = python + " '" + script.string() + "' '" + outDir.string() + "'";
   if (std::system(command.c_str()) != 0)
     throw std::runtime_error("bench: the report and plots failed (" + command +
-                             "; needs python3-matplotlib); bench.json is written");
+                             "; needs python3-matplotlib); the JSON is written");
 }
+
+void writeReport(const fs::path& outDir) { runReportScript("bench_report.py", outDir); }
 
 }  // namespace qlight::game::bench

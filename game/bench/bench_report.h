@@ -24,7 +24,10 @@ struct SceneBench {
 // The scene's entry of bench.json; writes its PFM images under `outDir`/images/<name>/.
 nlohmann::json sceneJson(const SceneBench& scene, const std::filesystem::path& outDir);
 
-// Runs tools/bench_report.py on `outDir`. Throws with its message when it fails.
+// Runs tools/`scriptName` (python3 with matplotlib) on `outDir`. Throws with its message
+// when it fails.
+void runReportScript(const std::string& scriptName, const std::filesystem::path& outDir);
+// Runs tools/bench_report.py on `outDir`.
 void writeReport(const std::filesystem::path& outDir);
 
 }  // namespace qlight::game::bench
