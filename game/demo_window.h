@@ -9,7 +9,7 @@
 namespace qlight::game {
 
 struct DemoArgs {
-  std::string scene = "animated_light.gltf";
+  std::string scene = "door_ajar_moving_light.gltf";
   uint32_t frames = 60;
   float fps = 24.0f;
   float moveSeconds = 1.5f;

@@ -88,6 +88,8 @@ Context::Context(ContextOptions options) {
   }
   pickPhysicalDevice(options);
   createDevice();
+  if (const char* n = std::getenv("QLIGHT_TEST_LOSE_DEVICE_AFTER"); n && *n)
+    loseDeviceAfter_ = std::strtoull(n, nullptr, 10);
   if (!options.quiet)
     std::fprintf(stderr, "qlight: Vulkan device \"%s\"%s\n", properties_.deviceName,
                  validation_ ? " (validation on)" : "");
@@ -376,7 +378,9 @@ void Context::submitAndWait(const std::function<void(VkCommandBuffer)>& record) 
   submit.commandBufferCount = 1;
   submit.pCommandBuffers = &cmd;
   QL_VK(vkQueueSubmit(queue_, 1, &submit, fence));
-  QL_VK(vkWaitForFences(device, 1, &fence, VK_TRUE, UINT64_MAX));
+  VkResult waited = vkWaitForFences(device, 1, &fence, VK_TRUE, UINT64_MAX);
+  if (loseDeviceAfter_ > 0 && ++submissions_ >= loseDeviceAfter_) waited = VK_ERROR_DEVICE_LOST;
+  if (waited != VK_SUCCESS) throwVkError("vkWaitForFences", waited);
 }
 
 std::vector<std::string> Context::validationMessages() const {

@@ -113,6 +113,10 @@ class Context {
 
   mutable std::mutex messagesMutex_;
   std::vector<std::string> messages_;
+  // Tests of device loss: $QLIGHT_TEST_LOSE_DEVICE_AFTER=N makes the Nth submission report
+  // VK_ERROR_DEVICE_LOST (no driver loses a device on request).
+  uint64_t loseDeviceAfter_ = 0;
+  mutable uint64_t submissions_ = 0;
 };
 
 }  // namespace qlight::gpu

@@ -148,7 +148,9 @@ int runBench(BenchArgs a, const CommonOptions& common) {
   applyModeDefaults(a);
   std::vector<std::string> scenes;
   for (const std::string& s : a.scenes) scenes.push_back(resolveScene(s));
-  if (scenes.empty()) scenes = shippedScenes();
+  if (scenes.empty())
+    for (const std::string& s : shippedScenes())
+      if (!isTrackingStudyScene(s)) scenes.push_back(s);
   validate(a, scenes);
   const nlohmann::json traversal = traversalEntry(a.traversal);  // fails before rendering
   auto ctx = createContext(common, /*windowed=*/false);
@@ -239,8 +241,10 @@ std::function<int()> addBenchCommand(CLI::App& app, const CommonOptions& common)
   CLI::App* cmd =
       app.add_subcommand("bench", "guided vs unguided at equal time and equal samples, with plots");
   cmd->add_flag("--quick", args->quick, "about a minute on lavapipe (small images, short budgets)");
-  cmd->add_option("--scene", args->scenes,
-                  "glTF scene or shipped name (repeat; default: every shipped scene)");
+  cmd->add_option(
+      "--scene", args->scenes,
+      "glTF scene or shipped name (repeat; default: every shipped scene but the tracking "
+      "study's)");
   cmd->add_option("--out", args->out, "output folder (bench.json, report.md, plots/, images/)")
       ->capture_default_str();
   cmd->add_option("--budget", args->budgetSeconds,

@@ -99,6 +99,12 @@ nlohmann::json number(double v) { return std::isfinite(v) ? nlohmann::json(v) : 
 
 }  // namespace
 
+bool isTrackingStudyScene(const fs::path& file) {
+  for (const TrackingCase& tc : kCases)
+    if (file.filename() == tc.scene) return true;
+  return false;
+}
+
 nlohmann::json runTrackingStudy(const gpu::Context& ctx, const TrackingStudySettings& settings,
                                 const fs::path& outDir) {
   const std::vector<TrackingMethod> methods = trackingMethods(settings);

@@ -25,6 +25,10 @@ struct TrackingStudySettings {
   std::filesystem::path cacheDir;    // references, as the bench caches them
 };
 
+// The study's scenes (door-ajar with an animated light): the equal-time bench leaves them
+// out of its default list, as at time 0 they are the door-ajar scene again.
+bool isTrackingStudyScene(const std::filesystem::path& file);
+
 // Runs both cases and writes `outDir`/tracking.json; returns it.
 nlohmann::json runTrackingStudy(const gpu::Context& ctx, const TrackingStudySettings& settings,
                                 const std::filesystem::path& outDir);

@@ -159,6 +159,27 @@ TEST(RenderCli, NoVulkanDeviceIsAOneLineError) {
   }
 }
 
+// A device lost mid-run (simulated: the 30th submission reports VK_ERROR_DEVICE_LOST) ends
+// render, demo and bench with one line saying so and exit code 1, not a crash or a hang.
+TEST(RenderCli, ADeviceLostMidRunIsAOneLineError) {
+  for (const std::string args :
+       {"render --scene " + asset("door_ajar.gltf") +
+            " --out /tmp/qlight_lost.png --spp 64 --batch 1 --width 32 --height 18",
+        std::string("demo --headless --frames 60 --width 32 --height 18 --out /tmp/qlight_lost"),
+        "bench --quick --scene " + asset("cornell_box.gltf") + " --out /tmp/qlight_lost_bench " +
+            "--cache /tmp/qlight_lost_bench/cache --no-report"}) {
+    RunResult r =
+        runCommand("QLIGHT_TEST_LOSE_DEVICE_AFTER=30 " + std::string(QLIGHT_BINARY) + " " + args);
+    EXPECT_EQ(r.exitCode, 1) << args << "\n" << r.output;
+    EXPECT_NE(r.output.find("qlight: error: the Vulkan device was lost"), std::string::npos)
+        << args << "\n"
+        << r.output;
+    const size_t first = r.output.find("qlight: error:");
+    EXPECT_EQ(r.output.find("qlight: error:", first + 1), std::string::npos) << "one line";
+    EXPECT_EQ(r.output.find("terminate"), std::string::npos) << args << "\n" << r.output;
+  }
+}
+
 // Non-finite numbers are refused like any other out-of-range value: one line naming the
 // option, before anything is loaded or rendered.
 TEST(DemoCli, NonFiniteNumbersAreRejected) {

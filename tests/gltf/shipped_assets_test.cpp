@@ -27,8 +27,12 @@ const std::filesystem::path kGenerated = QLIGHT_GENERATED_ASSETS_DIR;
 std::filesystem::path scenePath(const std::string& name) {
   return (name == "furnished_room.gltf" ? kGenerated : kAssets) / name;
 }
-const char* const kShipped[] = {"cornell_box.gltf", "door_ajar.gltf", "animated_light.gltf",
-                                "many_lights.gltf"};
+const char* const kShipped[] = {"cornell_box.gltf",
+                                "door_ajar.gltf",
+                                "animated_light.gltf",
+                                "many_lights.gltf",
+                                "door_ajar_moving_light.gltf",
+                                "door_ajar_jumping_light.gltf"};
 // Benchmark scenes for guiding in hard indirect light; the furnished room is large, and the
 // glossy floor is the one material that is not Lambertian.
 const char* const kIndirect[] = {"corridor.gltf", "glossy_floor.gltf", "furnished_room.gltf"};
@@ -395,6 +399,53 @@ TEST(ShippedAssets, AnimatedLightLoopsInsideTheBox) {
   // Looping: t and t + duration give the same pose.
   const auto a = animate(scene, 1.3f, true), b = animate(scene, 1.3f + duration, true);
   EXPECT_NEAR(glm::length(a[lightNode].translation - b[lightNode].translation), 0.0f, 1e-5f);
+}
+
+// The door-ajar light's centre at time t (its node's translation).
+glm::vec3 animatedLightCentre(const SceneAsset& scene, float t) {
+  const uint32_t node = scene.animations.at(0).channels.at(0).node;
+  return glm::vec3(worldTransforms(scene, animate(scene, t, true))[node][3]);
+}
+
+// The demo's scene: the light glides through room B (never into the wall, never seen from
+// the camera) and loops; the door is the one of door_ajar.gltf.
+TEST(ShippedAssets, DoorAjarMovingLightGlidesThroughRoomBHidden) {
+  const SceneAsset scene = loadGltf(kAssets / "door_ajar_moving_light.gltf");
+  ASSERT_EQ(scene.animations.size(), 1u);
+  const float duration = scene.animations[0].duration;
+  EXPECT_GE(duration, 4.0f);
+  EXPECT_EQ(scene.animations[0].channels[0].interpolation, Interpolation::Linear);
+  EXPECT_NEAR(doorGap(scene, 4.0f, 1.6f), 0.10, 0.01);
+  glm::vec3 previous(1e9f);
+  for (int k = 0; k < 12; ++k) {
+    const float t = duration * float(k) / 12.0f;
+    SCOPED_TRACE(t);
+    const std::vector<Triangle> triangles = worldTriangles(scene, t);
+    const glm::dvec3 eye = expectCameraAndLightsApart(scene, triangles, 4.0, 4.4);
+    EXPECT_EQ(emitterPointsSeen(scene, triangles, eye), 0u);
+    const glm::vec3 centre = animatedLightCentre(scene, t);
+    EXPECT_GT(glm::length(centre - previous), 0.3f) << "the light moves";
+    EXPECT_LT(centre.x, 7.8f);
+    EXPECT_GT(centre.z, 0.3f);
+    EXPECT_LT(centre.z, 3.7f);
+    previous = centre;
+  }
+  EXPECT_LT(
+      glm::length(animatedLightCentre(scene, 1.0f) - animatedLightCentre(scene, 1.0f + duration)),
+      1e-4f);
+}
+
+// The tracking study's jump: the light stands still in room B, then in room A, then back.
+TEST(ShippedAssets, DoorAjarJumpingLightJumpsBetweenTheRooms) {
+  const SceneAsset scene = loadGltf(kAssets / "door_ajar_jumping_light.gltf");
+  ASSERT_EQ(scene.animations.size(), 1u);
+  EXPECT_EQ(scene.animations[0].channels[0].interpolation, Interpolation::Step);
+  const glm::vec3 inB = animatedLightCentre(scene, 0.0f);
+  const glm::vec3 inA = animatedLightCentre(scene, 6.0f);
+  EXPECT_GT(inB.x, 4.4f);
+  EXPECT_LT(inA.x, 4.0f);
+  for (float t : {0.5f, 3.0f, 5.9f, 12.5f}) EXPECT_EQ(animatedLightCentre(scene, t), inB) << t;
+  for (float t : {6.1f, 9.0f, 11.9f}) EXPECT_EQ(animatedLightCentre(scene, t), inA) << t;
 }
 
 TEST(ShippedAssets, ManyLightsHasOverAHundredEmittersOfVaryingStrength) {
