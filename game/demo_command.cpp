@@ -122,6 +122,12 @@ std::function<int()> addDemoCommand(CLI::App& app, const CommonOptions& common) 
                   "window: frame time held by a smaller render while the camera moves (0: off)")
       ->check(finiteRange(0.0, 10000.0))
       ->capture_default_str();
+  cmd->add_flag("--show-cache-points", args->showCachePoints,
+                "window: draw the cache points over the image from the start (panel: Guiding)");
+  cmd->add_option("--inspect-at", args->inspectAt,
+                  "window: show the learned Q at this window pixel X Y instead of the cursor's")
+      ->expected(2)
+      ->check(finiteRange(0.0, 1e5));
   cmd->add_option("--scripted-move-frames", args->scriptedMoveFrames,
                   "window: fly forward for the first N frames, then stay still")
       ->check(CLI::Range(0, 1000000));

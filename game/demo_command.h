@@ -11,7 +11,7 @@ namespace qlight::game {
 
 // The demo's tracking: learned values and confidence halve in this many frames without
 // new data (measured by `qlight bench --tracking`, docs/tracking.md).
-constexpr float kDemoHalfLifeFrames = 16.0f;
+constexpr float kDemoHalfLifeFrames = 8.0f;
 
 std::function<int()> addDemoCommand(CLI::App& app, const CommonOptions& common);
 

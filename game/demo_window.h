@@ -2,6 +2,7 @@
 // frame, fly controls, and the Dear ImGui panel.
 #pragma once
 #include <string>
+#include <vector>
 
 #include "engine/render/render_settings.h"
 #include "game/cli_options.h"
@@ -28,6 +29,8 @@ struct DemoArgs {
   uint32_t scriptedMoveFrames = 0;  // fly forward for the first N frames (tests, timing)
   uint32_t exitAfterFrames = 0;     // 0: run until the window closes
   std::string screenshotAtExit;     // PNG of the render written when the window closes
+  bool showCachePoints = false;     // the cache points overlay from the start
+  std::vector<float> inspectAt;     // window pixel whose Q is shown instead of the cursor's
 };
 
 // Runs until the window closes; returns the exit code (non-zero after printing

@@ -58,6 +58,7 @@ WindowApp::WindowApp(const DemoArgs& args, const CommonOptions& common)
   dynamic_.enabled = args.targetFrameMs > 0.0f;
   if (dynamic_.enabled) dynamic_.targetMs = args.targetFrameMs;
   dynamic_.scale = renderScale_;
+  guideViews_.settings.pointsOverlay = args.showCachePoints;
   resetCamera();
   registerDisplay();
 }
@@ -183,8 +184,16 @@ int WindowApp::run() {
             // Strata changes reset the tables, the rest applies from the next frame; guiding
             // never biases the image, so accumulation goes on.
             if (g.changed || g.regenerate) renderer_.setGuiding(guidingWanted_, g.regenerate);
+            drawGuideViewControls(guideViews_.settings);
           });
       if (changes.resetCamera) resetCamera();
+      const ImGuiIO& io = ImGui::GetIO();
+      if (args_.inspectAt.size() == 2)  // scripted runs and screenshots
+        guideViews_.draw(renderer_, camera_.view(), io.DisplaySize,
+                         ImVec2(args_.inspectAt[0], args_.inspectAt[1]), true);
+      else
+        guideViews_.draw(renderer_, camera_.view(), io.DisplaySize, io.MousePos,
+                         !imgui_.wantsMouse());
     }
     applySettings(target->extent, dynamic_.scale);
     // Simulate, extract, upload: a moved light or object restarts or fades the image.
@@ -213,6 +222,8 @@ int WindowApp::run() {
       dynamic_.scale, lowestScale_, dynamic_.targetMs,
       dynamic_.enabled ? "" : ", dynamic resolution off", movingFrames_,
       1e3 * movingSeconds_ / std::max(movingFrames_, 1u));
+  if (const std::string views = guideViews_.summary(); !views.empty())
+    std::printf("qlight demo: guide views: %s\n", views.c_str());
   if (!args_.screenshotAtExit.empty())
     writeScreenshot(renderer_.tracer(), args_.screenshotAtExit, wanted_.exposure, wanted_.tonemap);
   return finishContext(*ctx_);

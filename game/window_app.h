@@ -14,6 +14,7 @@
 #include "engine/ui/presenter.h"
 #include "game/demo_window.h"
 #include "game/dynamic_resolution.h"
+#include "game/ui_guide_views.h"
 #include "game/window_camera.h"
 #include "game/window_input.h"
 #include "game/window_scene.h"
@@ -59,6 +60,7 @@ class WindowApp {
   session::Renderer renderer_;  // the frame: scene entities, cache points, tracer, guide
   ui::DisplayPass display_;
   guiding::GuidingSettings guidingWanted_;
+  GuideViews guideViews_;  // cache points over the image, Q under the cursor
   InputReader input_;
   FreeCamera camera_;
   SceneClock clock_;

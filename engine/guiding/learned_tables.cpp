@@ -158,10 +158,9 @@ void LearnedTables::recordLearning(gpu::PassRecorder& rec, uint32_t rows,
 }
 
 LearnedTables::ValueRange LearnedTables::qRange() const {
-  std::vector<float> q(uint64_t(slots_) * q_.rowLength);
+  const std::vector<float> q = readAllQ();
   ValueRange r;
   if (q.empty()) return r;
-  q_.values->download(ctx_, q.data(), q.size() * 4, 0);
   r.min = INFINITY;
   r.max = -INFINITY;
   for (float v : q) {
@@ -175,11 +174,35 @@ LearnedTables::ValueRange LearnedTables::qRange() const {
   return r;
 }
 
+namespace {
+std::vector<float> readRow(const gpu::Context& ctx, const LearnedTable& table, uint32_t slot,
+                           uint32_t slots) {
+  if (slot >= slots) throw std::out_of_range("no cache point slot " + std::to_string(slot));
+  std::vector<float> row(table.rowLength);
+  if (!row.empty())
+    table.values->download(ctx, row.data(), row.size() * 4, uint64_t(slot) * row.size() * 4);
+  return row;
+}
+}  // namespace
+
 std::vector<float> LearnedTables::readQ(uint32_t slot) const {
-  if (slot >= slots_) throw std::out_of_range("no cache point slot " + std::to_string(slot));
-  std::vector<float> q(q_.rowLength);
-  q_.values->download(ctx_, q.data(), q.size() * 4, uint64_t(slot) * q.size() * 4);
+  return readRow(ctx_, q_, slot, slots_);
+}
+
+std::vector<float> LearnedTables::readV(uint32_t slot) const {
+  return lights_ > 0 ? readRow(ctx_, v_, slot, slots_) : std::vector<float>{};
+}
+
+std::vector<float> LearnedTables::readAllQ() const {
+  std::vector<float> q(uint64_t(slots_) * q_.rowLength);
+  if (!q.empty()) q_.values->download(ctx_, q.data(), q.size() * 4, 0);
   return q;
+}
+
+std::vector<uint32_t> LearnedTables::readPointUpdates() const {
+  std::vector<uint32_t> n(slots_);
+  if (!n.empty()) pointUpdates_->download(ctx_, n.data(), n.size() * 4, 0);
+  return n;
 }
 
 }  // namespace qlight::guiding

@@ -56,6 +56,11 @@ class LearnedTables {
   const gpu::BufferView& pointUpdatesView() const { return *pointUpdatesView_; }
   // Q of one slot (strata values), for tests and the UI.
   std::vector<float> readQ(uint32_t slot) const;
+  // The light values V of one slot (empty without light learning), for the UI.
+  std::vector<float> readV(uint32_t slot) const;
+  // Every slot's Q and update count (the UI's overlay of all points).
+  std::vector<float> readAllQ() const;
+  std::vector<uint32_t> readPointUpdates() const;
   // Smallest and largest Q over every slot, and the entries that are not finite (the soak
   // run checks the tables stay finite and bounded).
   struct ValueRange {

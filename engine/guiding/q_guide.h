@@ -51,6 +51,10 @@ class QGuide final : public render::Guide {
   uint64_t memoryBytes() const;
   // Q of the point in `slot` (its strata values), for tests and the UI.
   std::vector<float> readQ(uint32_t slot) const { return tables_.readQ(slot); }
+  // What was learned, for the window's views (engine/guiding/guide_inspection.h).
+  const LearnedTables& tables() const { return tables_; }
+  // The nearest-point search radius (0 before points exist).
+  float searchRadius() const { return points_ ? points_->searchRadius() : 0.0f; }
   LearnedTables::ValueRange qRange() const { return tables_.qRange(); }
 
   void bind(gpu::PassBuilder& pass) const override;

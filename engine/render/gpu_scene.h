@@ -43,6 +43,10 @@ class GpuScene {
   const glm::vec3& boundsCenter() const { return center_; }
   float boundsRadius() const { return radius_; }
   const std::vector<shared::GpuLight>& lights() const { return lights_; }
+  // Nearest surface along a ray (CPU traversal of the same BVH; for picking).
+  std::optional<float> closestHit(glm::vec3 origin, glm::vec3 direction) const {
+    return accel_.closestHit(origin, direction);
+  }
 
  private:
   void uploadStatic();

@@ -1,5 +1,6 @@
 #include "engine/render/scene_accel.h"
 
+#include "engine/bvh/cpu_traversal.h"
 #include "engine/bvh/scene_bvh.h"
 
 namespace qlight::render {
@@ -31,6 +32,14 @@ const std::vector<glm::vec4>& SceneAccel::triangleTexels() const {
 }
 const std::vector<glm::vec4>& SceneAccel::instanceTexels() const {
   return impl_->bvh.flat().instances;
+}
+
+std::optional<float> SceneAccel::closestHit(glm::vec3 origin, glm::vec3 direction) const {
+  if (impl_->bvh.flat().nodes.empty()) return std::nullopt;
+  bvh::CpuBvhBinding binding(impl_->bvh.flat());
+  shared::BvhHit hit;
+  if (!shared::traceClosest(origin, glm::normalize(direction), 1e30f, hit)) return std::nullopt;
+  return hit.t;
 }
 
 }  // namespace qlight::render

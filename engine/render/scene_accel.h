@@ -3,6 +3,7 @@
 #pragma once
 #include <glm/glm.hpp>
 #include <memory>
+#include <optional>
 #include <vector>
 
 #include "engine/render/scene_draw.h"
@@ -23,6 +24,10 @@ class SceneAccel {
   const std::vector<glm::vec4>& nodeTexels() const;
   const std::vector<glm::vec4>& triangleTexels() const;
   const std::vector<glm::vec4>& instanceTexels() const;
+
+  // The distance to the nearest surface along a ray, traced on the CPU by the shaders'
+  // own traversal (the window's picking: a few rays a second).
+  std::optional<float> closestHit(glm::vec3 origin, glm::vec3 direction) const;
 
  private:
   struct Impl;

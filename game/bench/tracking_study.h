@@ -18,7 +18,7 @@ namespace qlight::game::bench {
 struct TrackingStudySettings {
   render::RenderSettings render;     // size and samples per frame of each frame
   guiding::GuidingSettings guiding;  // the guided methods' base settings
-  float trackingHalfLife = 16.0f;    // frames: the tracking method's half-life
+  float trackingHalfLife = 8.0f;     // frames: the tracking method's half-life
   uint32_t seeds = 8;                // runs per method, averaged per frame
   uint32_t frames = 180;             // 10 frames per second of scene time
   uint32_t referenceSpp = 128;       // per distinct light position

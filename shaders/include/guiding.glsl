@@ -36,11 +36,9 @@ float vCdf(uint i) { return texelFetch(uVCdf, int(i)).x; }
 
 uint strataCount() { return guiding.rows * guiding.cols; }
 
-// How far a point's learned distribution can be trusted: 0 without updates,
-// 1 after confidenceUpdates per stratum.
 float pointConfidence(uint point) {
-  if (guiding.confidenceUpdates <= 0.0) return 1.0;
-  return min(1.0, float(texelFetch(uPointUpdates, int(point)).x) / (guiding.confidenceUpdates * float(strataCount())));
+  return confidenceOf(texelFetch(uPointUpdates, int(point)).x, guiding.confidenceUpdates,
+                      strataCount());
 }
 
 

@@ -156,6 +156,13 @@ QL_FN uint agedCount(uint count, uint age, float forgetPerPass) {
   return uint(float(count) * exp2(forgetPerPass * float(age)));
 }
 
+// How far a point's learned distribution can be trusted: 0 without updates, 1 after
+// confidenceUpdates per stratum (0: at once).
+QL_FN float confidenceOf(uint updates, float confidenceUpdates, uint strata) {
+  if (confidenceUpdates <= 0.0f) return 1.0f;
+  return min(1.0f, float(updates) / (confidenceUpdates * float(strata)));
+}
+
 QL_FN float updatedQ(float q, float targetSum, uint m, uint visits, float alphaMin, float alphaMax,
                      float qFloor) {
   if (m == 0u) return max(q, qFloor);

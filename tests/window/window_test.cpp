@@ -113,5 +113,27 @@ TEST_F(WindowDemo, DynamicResolutionLowersWhileMovingAndRestoresWhenStill) {
   EXPECT_EQ(w, int(defaults.windowWidth * defaults.renderScale));
 }
 
+// Seeing the learning: the cache points overlay and the Q view of the point at the image's
+// centre (the Cornell box's back wall) draw what the guide learned, validation silent.
+TEST_F(WindowDemo, GuideViewsDrawTheCachePointsAndTheQOfThePointAtTheCentre) {
+  DemoRun demo = runDemo("--exit-after-frames 12 --show-cache-points --inspect-at 480 270");
+  const RunResult& run = demo.run;
+  ASSERT_EQ(run.exitCode, 0) << demo.command << "\n" << run.output;
+  size_t points = 0;
+  float x = 0, y = 0, z = 0;
+  const size_t at = run.output.find("guide views: ");
+  ASSERT_NE(at, std::string::npos) << run.output;
+  ASSERT_EQ(std::sscanf(run.output.c_str() + at,
+                        "guide views: %zu cache points drawn, Q shown of the point at %f %f %f",
+                        &points, &x, &y, &z),
+            4)
+      << run.output;
+  EXPECT_GT(points, 50u) << run.output;
+  // The box spans [-1, 1] in x and z and [0, 2] in y; the centre ray meets its back wall.
+  EXPECT_LT(std::abs(x), 1.0f);
+  EXPECT_GT(y, 0.2f);
+  EXPECT_LT(y, 1.8f);
+}
+
 }  // namespace
 }  // namespace qlight::test

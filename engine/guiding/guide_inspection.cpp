@@ -1,0 +1,48 @@
+#include "engine/guiding/guide_inspection.h"
+
+#include "shaders/shared/strata.h"
+
+namespace qlight::guiding {
+
+std::vector<PointSummary> summarizePoints(ecs::Registry& registry, const QGuide& guide) {
+  const GuidingSettings& s = guide.settings();
+  const std::vector<float> q = guide.tables().readAllQ();
+  const std::vector<uint32_t> updates = guide.tables().readPointUpdates();
+  std::vector<float> cosine(s.strata());
+  for (uint32_t k = 0; k < s.strata(); ++k)
+    cosine[k] = shared::stratumCosineIntegral(k, s.rows, s.cols);
+  std::vector<PointSummary> out;
+  registry.view<const CachePoint>().each([&](ecs::Entity, const CachePoint& p) {
+    if (uint64_t(p.slot + 1) * s.strata() > q.size()) return;
+    PointSummary summary{p.position, p.normal};
+    for (uint32_t k = 0; k < s.strata(); ++k)
+      summary.irradiance += q[uint64_t(p.slot) * s.strata() + k] * cosine[k];
+    summary.confidence = shared::confidenceOf(updates[p.slot], s.confidenceUpdates, s.strata());
+    out.push_back(summary);
+  });
+  return out;
+}
+
+std::optional<PointDetail> inspectPointAt(ecs::Registry& registry, const QGuide& guide,
+                                          glm::vec3 position, glm::vec3 towardViewer) {
+  const float reach = guide.searchRadius();
+  std::optional<CachePoint> best;
+  float bestDistance = reach * reach;
+  registry.view<const CachePoint>().each([&](ecs::Entity, const CachePoint& p) {
+    const glm::vec3 d = p.position - position;
+    const float distance = glm::dot(d, d);
+    if (distance <= bestDistance && glm::dot(p.normal, towardViewer) > 0.0f) {
+      bestDistance = distance;
+      best = p;
+    }
+  });
+  if (!best) return std::nullopt;
+  const GuidingSettings& s = guide.settings();
+  PointDetail detail{*best, s.rows, s.cols, guide.tables().readQ(best->slot),
+                     guide.tables().readV(best->slot)};
+  const std::vector<uint32_t> updates = guide.tables().readPointUpdates();
+  detail.confidence = shared::confidenceOf(updates.at(best->slot), s.confidenceUpdates, s.strata());
+  return detail;
+}
+
+}  // namespace qlight::guiding
