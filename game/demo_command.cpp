@@ -6,6 +6,7 @@
 #include <cstdio>
 #include <cstdlib>
 #include <filesystem>
+#include <map>
 #include <memory>
 
 #include "engine/gltf/gltf_loader.h"
@@ -124,6 +125,13 @@ std::function<int()> addDemoCommand(CLI::App& app, const CommonOptions& common) 
       ->capture_default_str();
   cmd->add_flag("--show-cache-points", args->showCachePoints,
                 "window: draw the cache points over the image from the start (panel: Guiding)");
+  std::map<std::string, bool> onOff{{"on", true}, {"off", false}};
+  cmd->add_option("--reuse-history", args->reuseHistory,
+                  "window: reproject the last frame while the camera moves, on|off (display only)")
+      ->transform(CLI::CheckedTransformer(onOff, CLI::ignore_case));
+  cmd->add_option("--denoise", args->denoise,
+                  "window: edge-aware a-trous denoiser, on|off (display only)")
+      ->transform(CLI::CheckedTransformer(onOff, CLI::ignore_case));
   cmd->add_option("--inspect-at", args->inspectAt,
                   "window: show the learned Q at this window pixel X Y instead of the cursor's")
       ->expected(2)

@@ -30,6 +30,8 @@ struct DemoArgs {
   uint32_t exitAfterFrames = 0;     // 0: run until the window closes
   std::string screenshotAtExit;     // PNG of the render written when the window closes
   bool showCachePoints = false;     // the cache points overlay from the start
+  bool reuseHistory = true;         // display: reproject the last frame while moving
+  bool denoise = false;             // display: the a-trous denoiser
   std::vector<float> inspectAt;     // window pixel whose Q is shown instead of the cursor's
 };
 

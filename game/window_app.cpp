@@ -12,6 +12,7 @@
 #include "engine/gpu/pass_recorder.h"
 #include "engine/ui/swapchain_blit.h"
 #include "game/context_setup.h"
+#include "game/ui_display_filter_panel.h"
 #include "game/ui_guiding_panel.h"
 #include "game/ui_panel.h"
 #include "game/window_screenshot.h"
@@ -52,12 +53,15 @@ WindowApp::WindowApp(const DemoArgs& args, const CommonOptions& common)
       renderer_(*ctx_, asset_, wanted_, args.guiding,
                 float(args.windowWidth) / float(std::max(args.windowHeight, 1u))),
       display_(*ctx_),
+      filter_(*ctx_),
       guidingWanted_(args.guiding),
       input_(window_.handle()) {
   clock_.duration = asset_.animationDuration();
   dynamic_.enabled = args.targetFrameMs > 0.0f;
   if (dynamic_.enabled) dynamic_.targetMs = args.targetFrameMs;
   dynamic_.scale = renderScale_;
+  filterSettings_.reuseHistory = args.reuseHistory;
+  filterSettings_.denoise = args.denoise;
   guideViews_.settings.pointsOverlay = args.showCachePoints;
   resetCamera();
   registerDisplay();
@@ -69,16 +73,24 @@ void WindowApp::registerDisplay() {
   renderer_.scheduler()
       .add("display")
       .phase(ecs::Phase::Present)
-      .reads<render::PathTracer, session::FrameRecording>()
+      .reads<render::PathTracer, session::FrameRecording, session::FrameView>()
       .writes<ui::DisplayPass>()
       .run([this](ecs::Registry& r) {
+        gpu::PassRecorder& recorder = *r.resource<session::FrameRecording>().recorder;
+        const render::PathTracer& tracer = renderer_.tracer();
+        const gpu::Image* shown = &tracer.accumulation();
+        if (filterSettings_.active()) {
+          filter_.record(recorder, renderer_.scene(), tracer.accumulation(),
+                         tracer.keptOfPrevious(), r.resource<session::FrameView>().camera,
+                         filterSettings_);
+          shown = &filter_.output();
+        }
         ui::DisplaySettings display;
         display.exposure = wanted_.exposure;
         display.tonemap =
             wanted_.tonemap == image::Tonemap::Aces ? shared::kTonemapAces : shared::kTonemapClamp;
         display.encodeSrgb = !presenter_.swapchain().encodesSrgb();
-        display_.record(*r.resource<session::FrameRecording>().recorder,
-                        renderer_.tracer().accumulation(), display);
+        display_.record(recorder, *shown, display);
       });
 }
 
@@ -187,6 +199,10 @@ int WindowApp::run() {
             drawGuideViewControls(guideViews_.settings);
           });
       if (changes.resetCamera) resetCamera();
+      if (ImGui::Begin("qlight")) {  // appends to the panel
+        if (ImGui::CollapsingHeader("Display")) drawDisplayFilterSection(filterSettings_);
+      }
+      ImGui::End();
       const ImGuiIO& io = ImGui::GetIO();
       if (args_.inspectAt.size() == 2)  // scripted runs and screenshots
         guideViews_.draw(renderer_, camera_.view(), io.DisplaySize,

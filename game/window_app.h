@@ -8,6 +8,7 @@
 #include "engine/gpu/context.h"
 #include "engine/scene/scene_asset.h"
 #include "engine/session/renderer.h"
+#include "engine/ui/display_filter.h"
 #include "engine/ui/display_pass.h"
 #include "engine/ui/glfw_window.h"
 #include "engine/ui/imgui_layer.h"
@@ -59,6 +60,8 @@ class WindowApp {
   uint32_t movingFrames_ = 0;
   session::Renderer renderer_;  // the frame: scene entities, cache points, tracer, guide
   ui::DisplayPass display_;
+  ui::DisplayFilter filter_;  // temporal reuse and the denoiser, display only
+  ui::DisplayFilterSettings filterSettings_;
   guiding::GuidingSettings guidingWanted_;
   GuideViews guideViews_;  // cache points over the image, Q under the cursor
   InputReader input_;

@@ -237,6 +237,11 @@ void GpuScene::update(const SceneDraw& draw) {
 }
 
 void GpuScene::bind(gpu::PassBuilder& pass) const {
+  bindSurfaces(pass);
+  pass.read(QL_BIND_LIGHTS, *lightBuffer_).read(QL_BIND_LIGHT_CDF, *lightCdfView_);
+}
+
+void GpuScene::bindSurfaces(gpu::PassBuilder& pass) const {
   if (!instances_) throw std::logic_error("GpuScene::update must run before the first frame");
   pass.read(QL_BIND_BVH_NODES, *bvhNodesView_)
       .read(QL_BIND_BVH_TRIS, *bvhTrisView_)
@@ -246,9 +251,7 @@ void GpuScene::bind(gpu::PassBuilder& pass) const {
       .read(QL_BIND_INSTANCES, *instances_)
       .read(QL_BIND_MATERIALS, *materialsView_)
       .read(QL_BIND_TEXTURES, *textures_)
-      .read(QL_BIND_TEXELS, *texelView_)
-      .read(QL_BIND_LIGHTS, *lightBuffer_)
-      .read(QL_BIND_LIGHT_CDF, *lightCdfView_);
+      .read(QL_BIND_TEXELS, *texelView_);
 }
 
 }  // namespace qlight::render

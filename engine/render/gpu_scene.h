@@ -30,6 +30,8 @@ class GpuScene {
 
   // Binds every scene buffer of the path tracing passes (shaders/pt_*.comp).
   void bind(gpu::PassBuilder& pass) const;
+  // Binds the geometry and materials only (include/scene_access.glsl, without the lights).
+  void bindSurfaces(gpu::PassBuilder& pass) const;
 
   uint32_t lightCount() const { return lightCount_; }
   bool usesFallbackSky() const { return fallbackSky_; }

@@ -72,6 +72,19 @@ void PathTracer::setSettings(const RenderSettings& s) {
   resetAccumulation();
 }
 
+shared::GpuCamera gpuCamera(const CameraView& camera, float aspect) {
+  shared::GpuCamera c{};
+  const glm::vec3 forward = glm::normalize(camera.forward);
+  const glm::vec3 right = glm::normalize(glm::cross(forward, camera.up));
+  c.position = camera.position;
+  c.forward = forward;
+  c.right = right;
+  c.up = glm::cross(right, forward);
+  c.tanHalfFovY = std::tan(0.5f * camera.yfov);
+  c.aspect = aspect;
+  return c;
+}
+
 void PathTracer::resetAccumulation() {
   clearPending_ = true;
   accumulated_ = 0;
@@ -115,6 +128,7 @@ void PathTracer::recordFrame(gpu::PassRecorder& rec, const GpuScene& scene,
     lastCamera_ = camera;
     cameraValid_ = true;
   }
+  keptOfPrevious_ = clearPending_ ? 0.0f : pendingFade_;
   if (clearPending_) {
     rec.clear("accumulate.clear", *accum_);
     clearPending_ = false;
@@ -130,14 +144,7 @@ void PathTracer::recordFrame(gpu::PassRecorder& rec, const GpuScene& scene,
   rec.fill("stats.clear", stats_, 0);
 
   FrameUniforms u{};
-  glm::vec3 forward = glm::normalize(camera.forward);
-  glm::vec3 right = glm::normalize(glm::cross(forward, camera.up));
-  u.camera.position = camera.position;
-  u.camera.forward = forward;
-  u.camera.right = right;
-  u.camera.up = glm::cross(right, forward);
-  u.camera.tanHalfFovY = std::tan(0.5f * camera.yfov);
-  u.camera.aspect = float(settings_.width) / float(settings_.height);
+  u.camera = gpuCamera(camera, float(settings_.width) / float(settings_.height));
   u.resolution = glm::uvec2(settings_.width, settings_.height);
   u.frameIndex = sampleCounter_;
   u.seed = settings_.seed;

@@ -16,8 +16,12 @@
 #include "engine/render/gpu_scene.h"
 #include "engine/render/guide.h"
 #include "engine/render/render_settings.h"
+#include "shaders/shared/scene_types.h"
 
 namespace qlight::render {
+
+// The camera as the shaders build primary rays from it (pt_begin.comp, gbuffer.comp).
+shared::GpuCamera gpuCamera(const CameraView& camera, float aspect);
 
 struct FrameCounters {
   uint64_t rays = 0, shadowRays = 0, paths = 0, emitterHits = 0, pathVertices = 0,
@@ -41,6 +45,9 @@ class PathTracer {
   // Nor does the weight a fade will keep (settings.temporalBlend, in [0, 1)).
   void setTemporalBlend(float k);
   uint32_t accumulatedSamples() const { return accumulated_; }
+  // What the last recorded frame kept of the accumulation before it: 0 when it restarted
+  // (the camera or the scene moved), the fade factor with temporal blending, else 1.
+  float keptOfPrevious() const { return keptOfPrevious_; }
 
   // Records settings.samplesPerFrame samples of `scene` seen from `camera`.
   // The camera moving restarts accumulation. `guide` binds the learned
@@ -75,6 +82,7 @@ class PathTracer {
   bool cameraValid_ = false;
   bool clearPending_ = true;
   float pendingFade_ = 1.0f;
+  float keptOfPrevious_ = 0.0f;
   gpu::ComputePipeline decay_;
   uint32_t accumulated_ = 0;
   uint32_t sampleCounter_ = 0;  // seeds: never reused within one accumulation

@@ -135,5 +135,13 @@ TEST_F(WindowDemo, GuideViewsDrawTheCachePointsAndTheQOfThePointAtTheCentre) {
   EXPECT_LT(y, 1.8f);
 }
 
+// The display filter in the window: temporal reuse (on by default) and the denoiser while a
+// scripted flight moves the camera and after it stops, validation silent.
+TEST_F(WindowDemo, DisplayFilterRunsWhileMovingAndStill) {
+  DemoRun demo = runDemo("--exit-after-frames 10 --scripted-move-frames 5 --denoise on");
+  ASSERT_EQ(demo.run.exitCode, 0) << demo.command << "\n" << demo.run.output;
+  EXPECT_NE(demo.run.output.find("10 frames in a"), std::string::npos) << demo.run.output;
+}
+
 }  // namespace
 }  // namespace qlight::test

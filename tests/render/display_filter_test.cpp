@@ -1,0 +1,125 @@
+// The display filter (temporal reuse by reprojection, the a-trous denoiser) on the Cornell
+// box: while the camera moves it shows a frame much closer to the converged image than the
+// frame's own samples, it converges to the unfiltered accumulation once the camera is still,
+// and the denoiser lowers a still frame's error; the tracer's accumulation is never touched.
+#include "engine/ui/display_filter.h"
+
+#include <cstdio>
+
+#include "engine/session/offline_render.h"
+#include "engine/session/renderer.h"
+#include "tests/render/render_support.h"
+
+namespace qlight::test {
+namespace {
+
+// The bench's measure (game/bench/bench_metrics.h): mean of (x - ref)^2 / (ref^2 + 0.01).
+double relativeMse(const image::LinearImage& x, const image::LinearImage& ref) {
+  double sum = 0;
+  size_t n = 0;
+  for (size_t i = 0; i < x.rgba.size(); i += 4)
+    for (int c = 0; c < 3; ++c, ++n) {
+      const double d = double(x.rgba[i + c]) - ref.rgba[i + c];
+      sum += d * d / (double(ref.rgba[i + c]) * ref.rgba[i + c] + 0.01);
+    }
+  return sum / double(n);
+}
+
+class DisplayFilterTest : public GpuTest {
+ protected:
+  // 512 spp of the scene from `camera`, another seed: the converged image to compare with.
+  image::LinearImage reference(const scene::SceneAsset& asset, render::RenderSettings s,
+                               const render::CameraView& camera) {
+    s.seed = 99;
+    s.samplesPerFrame = 32;
+    session::Renderer renderer(ctx(), asset, s, session::disabledGuiding(), 1.0f);
+    for (int f = 0; f < 16; ++f) renderer.renderFrame(0.0f, camera);
+    return renderer.tracer().readImage();
+  }
+  // Mean radiance of an image in the accumulation's format (rgb sum, a weight).
+  image::LinearImage meanImage(const gpu::Image& sums) {
+    image::LinearImage img;
+    img.width = sums.width();
+    img.height = sums.height();
+    img.rgba = sums.readFloats(ctx());
+    for (size_t i = 0; i < img.rgba.size(); i += 4) {
+      const float n = img.rgba[i + 3];
+      for (int c = 0; c < 3; ++c) img.rgba[i + c] = n > 0 ? img.rgba[i + c] / n : 0.0f;
+      img.rgba[i + 3] = 1.0f;
+    }
+    return img;
+  }
+  void filterFrame(ui::DisplayFilter& filter, session::Renderer& renderer,
+                   const render::CameraView& camera, const ui::DisplayFilterSettings& settings) {
+    ctx().submitAndWait([&](VkCommandBuffer cmd) {
+      gpu::PassRecorder rec(ctx(), cmd);
+      filter.record(rec, renderer.scene(), renderer.tracer().accumulation(),
+                    renderer.tracer().keptOfPrevious(), camera, settings);
+      rec.finish();
+    });
+  }
+};
+
+TEST_F(DisplayFilterTest, ReusesHistoryWhileMovingAndConvergesToTheAccumulationWhenStill) {
+  const scene::SceneAsset asset = gltf::loadGltf(assetPath("cornell_box.gltf"));
+  render::RenderSettings s = smallSettings(48, 48, 5);
+  s.samplesPerFrame = 1;
+  session::Renderer renderer(ctx(), asset, s, session::disabledGuiding(), 1.0f);
+  const render::CameraView start = renderer.world().camera();
+  auto cameraAt = [&](int frame) {  // a slow slide sideways: 2 mm a frame
+    render::CameraView v = start;
+    v.position += glm::normalize(glm::cross(v.forward, v.up)) * (0.002f * float(frame));
+    return v;
+  };
+  ui::DisplayFilter filter(ctx());
+  ui::DisplayFilterSettings settings;  // history reuse on, no denoiser
+  const int moving = 16;
+  for (int f = 0; f <= moving; ++f) {
+    renderer.renderFrame(0.0f, cameraAt(f));
+    filterFrame(filter, renderer, cameraAt(f), settings);
+  }
+  ASSERT_EQ(renderer.tracer().keptOfPrevious(), 0.0f) << "each moving frame restarts";
+  ASSERT_EQ(renderer.tracer().accumulatedSamples(), 1u);
+  const image::LinearImage raw = renderer.tracer().readImage();
+  const image::LinearImage shown = meanImage(filter.output());
+  const image::LinearImage converged = reference(asset, s, cameraAt(moving));
+  const double rawError = relativeMse(raw, converged);
+  const double shownError = relativeMse(shown, converged);
+  // Up to 8 frames of history: about an eighth of the 1-spp variance, plus the lag of a 2 mm
+  // slide; well under half.
+  std::printf("moving: relMSE of the frame's samples %.4f, shown %.4f\n", rawError, shownError);
+  EXPECT_LT(shownError, 0.5 * rawError) << "raw " << rawError << ", shown " << shownError;
+
+  // Still: the history fades (0.8 a frame) under the growing accumulation.
+  for (int f = 0; f < 40; ++f) {
+    renderer.renderFrame(0.0f, cameraAt(moving));
+    filterFrame(filter, renderer, cameraAt(moving), settings);
+  }
+  const image::LinearImage accumulated = renderer.tracer().readImage();
+  const double difference = relativeMse(meanImage(filter.output()), accumulated);
+  // History weight 8 x 0.8^40 ~ 1e-3 against 40 samples.
+  EXPECT_LT(difference, 1e-6) << "the still image is the accumulation";
+}
+
+TEST_F(DisplayFilterTest, DenoiserLowersTheErrorOfAStillFrame) {
+  const scene::SceneAsset asset = gltf::loadGltf(assetPath("cornell_box.gltf"));
+  render::RenderSettings s = smallSettings(48, 48, 7);
+  s.samplesPerFrame = 4;
+  session::Renderer renderer(ctx(), asset, s, session::disabledGuiding(), 1.0f);
+  const render::CameraView camera = renderer.world().camera();
+  renderer.renderFrame(0.0f, camera);
+  const auto before = renderer.tracer().accumulation().readFloats(ctx());
+  ui::DisplayFilter filter(ctx());
+  ui::DisplayFilterSettings settings;
+  settings.denoise = true;
+  filterFrame(filter, renderer, camera, settings);
+  EXPECT_EQ(renderer.tracer().accumulation().readFloats(ctx()), before) << "display only";
+  const image::LinearImage converged = reference(asset, s, camera);
+  const double rawError = relativeMse(renderer.tracer().readImage(), converged);
+  const double denoisedError = relativeMse(meanImage(filter.output()), converged);
+  std::printf("denoiser: relMSE %.4f -> %.4f\n", rawError, denoisedError);
+  EXPECT_LT(denoisedError, 0.7 * rawError) << "raw " << rawError << ", denoised " << denoisedError;
+}
+
+}  // namespace
+}  // namespace qlight::test
