@@ -90,6 +90,10 @@ Context::Context(ContextOptions options) {
   createDevice();
   if (const char* n = std::getenv("QLIGHT_TEST_LOSE_DEVICE_AFTER"); n && *n)
     loseDeviceAfter_ = std::strtoull(n, nullptr, 10);
+  // Tests of the limits on a device whose real ones no small scene reaches.
+  if (const char* n = std::getenv("QLIGHT_TEST_MAX_TEXEL_ELEMENTS"); n && *n)
+    properties_.limits.maxTexelBufferElements = std::min<uint32_t>(
+        properties_.limits.maxTexelBufferElements, uint32_t(std::strtoul(n, nullptr, 10)));
   if (!options.quiet)
     std::fprintf(stderr, "qlight: Vulkan device \"%s\"%s\n", properties_.deviceName,
                  validation_ ? " (validation on)" : "");

@@ -114,7 +114,8 @@ class Context {
   mutable std::mutex messagesMutex_;
   std::vector<std::string> messages_;
   // Tests of device loss: $QLIGHT_TEST_LOSE_DEVICE_AFTER=N makes the Nth submission report
-  // VK_ERROR_DEVICE_LOST (no driver loses a device on request).
+  // VK_ERROR_DEVICE_LOST (no driver loses a device on request). Tests of the limits:
+  // $QLIGHT_TEST_MAX_TEXEL_ELEMENTS lowers maxTexelBufferElements.
   uint64_t loseDeviceAfter_ = 0;
   mutable uint64_t submissions_ = 0;
 };

@@ -91,6 +91,13 @@ void GpuScene::uploadStatic() {
   }
   if (materials.empty()) materials.push_back(toGpu(scene::MaterialAsset{}));
 
+  // Refused before anything is allocated: all textures share one texel buffer.
+  uint64_t texelCount = 0;
+  for (const scene::TextureAsset& t : asset_.textures) texelCount += uint64_t(t.width) * t.height;
+  ctx_.requireBufferFits("the scene's textures (" + std::to_string(asset_.textures.size()) +
+                             " images, " + std::to_string(texelCount) +
+                             " texels; use smaller or fewer images)",
+                         texelCount * 4, false, texelCount);
   std::vector<GpuTexture> textures;
   std::vector<uint32_t> texels;
   for (const scene::TextureAsset& t : asset_.textures) {

@@ -142,10 +142,25 @@ TEST(RenderCli, RequestsLargerThanTheDeviceAreRefusedWithTheLimit) {
   }
 }
 
+// A texture larger than the device allows (simulated: a device of 20,000 texels per buffer;
+// BoxTextured's image has 211 x 211) is refused before anything is allocated, naming the
+// textures and the limit.
+TEST(RenderCli, TexturesLargerThanTheDeviceAreRefusedWithTheLimit) {
+  RunResult r = runCommand("QLIGHT_TEST_MAX_TEXEL_ELEMENTS=20000 " + std::string(QLIGHT_BINARY) +
+                           " render --scene " + std::string(QLIGHT_SAMPLES_DIR) +
+                           "/BoxTextured.gltf --out /tmp/qlight_bigtex.png --spp 1 --width 8 "
+                           "--height 8");
+  EXPECT_EQ(r.exitCode, 1) << r.output;
+  EXPECT_NE(r.output.find("the scene's textures (1 images, 44521 texels"), std::string::npos)
+      << r.output;
+  EXPECT_NE(r.output.find("the device allows 20000 (maxTexelBufferElements)"), std::string::npos)
+      << r.output;
+}
+
 // No Vulkan driver at all (the loader finds no ICD): one line that says what to install,
 // and a non-zero exit, for render, demo and bench alike.
 TEST(RenderCli, NoVulkanDeviceIsAOneLineError) {
-  for (const std::string args :
+  for (const std::string& args :
        {"render --scene " + asset("cornell_box.gltf") + " --out /tmp/qlight_nodev.png --spp 1",
         std::string("demo --headless --frames 1 --out /tmp/qlight_nodev"),
         "bench --quick --scene " + asset("cornell_box.gltf") + " --out /tmp/qlight_nodev_bench"}) {
@@ -162,7 +177,7 @@ TEST(RenderCli, NoVulkanDeviceIsAOneLineError) {
 // A device lost mid-run (simulated: the 30th submission reports VK_ERROR_DEVICE_LOST) ends
 // render, demo and bench with one line saying so and exit code 1, not a crash or a hang.
 TEST(RenderCli, ADeviceLostMidRunIsAOneLineError) {
-  for (const std::string args :
+  for (const std::string& args :
        {"render --scene " + asset("door_ajar.gltf") +
             " --out /tmp/qlight_lost.png --spp 64 --batch 1 --width 32 --height 18",
         std::string("demo --headless --frames 60 --width 32 --height 18 --out /tmp/qlight_lost"),
