@@ -17,6 +17,37 @@ namespace {
 
 class QUpdateGpu : public GpuTest {};
 
+// One table's buffers for `points` rows of `n` entries in all, and the learning pass over
+// them as LearnedTables records it.
+struct TableBuffers {
+  gpu::Buffer q, visits, cdf, sums, counts, pointUpdates, rowPasses;
+  TableBuffers(const gpu::Context& ctx, uint32_t n, uint32_t points)
+      : q(ctx, n * 4, "q"),
+        visits(ctx, n * 4, "visits"),
+        cdf(ctx, n * 4, "cdf"),
+        sums(ctx, n * 8, "sums"),
+        counts(ctx, n * 4, "counts"),
+        pointUpdates(ctx, points * 4, "pointUpdates"),
+        rowPasses(ctx, points * 4, "rowPasses") {}
+  void learningPass(const gpu::Context& ctx, const shared::TableUpdatePush& push) const {
+    gpu::ComputePipeline update(ctx, "q_update");
+    ctx.submitAndWait([&](VkCommandBuffer cmd) {
+      gpu::PassRecorder rec(ctx, cmd);
+      rec.pass("q_update", update)
+          .write(QL_Q_UPDATE_BIND_VALUES, q)
+          .write(QL_Q_UPDATE_BIND_VISITS, visits)
+          .write(QL_Q_UPDATE_BIND_CDF, cdf)
+          .write(QL_Q_UPDATE_BIND_SUMS, sums)
+          .write(QL_Q_UPDATE_BIND_COUNTS, counts)
+          .write(QL_Q_UPDATE_BIND_POINT_UPDATES, pointUpdates)
+          .write(QL_Q_UPDATE_BIND_ROW_PASSES, rowPasses)
+          .push(push)
+          .dispatch((push.rowCount + QL_Q_UPDATE_GROUP_SIZE - 1) / QL_Q_UPDATE_GROUP_SIZE);
+      rec.finish();
+    });
+  }
+};
+
 TEST_F(QUpdateGpu, UpdateAndCdfMatchCpuReference) {
   const uint32_t points = 300, rows = 4, cols = 8, strata = rows * cols;
   const uint32_t n = points * strata;
@@ -41,9 +72,9 @@ TEST_F(QUpdateGpu, UpdateAndCdfMatchCpuReference) {
   counts[7] = 1;
   sums[7] = shared::fixedSumToFloat(0xffffffffu, 0xffffffffu);
 
-  gpu::Buffer bq(ctx(), n * 4, "q"), bv(ctx(), n * 4, "visits"), bc(ctx(), n * 4, "cdf"),
-      bs(ctx(), n * 8, "sums"), bn(ctx(), n * 4, "counts"), bp(ctx(), points * 4, "pointUpdates"),
-      br(ctx(), points * 4, "rowPasses");
+  TableBuffers t(ctx(), n, points);
+  gpu::Buffer &bq = t.q, &bv = t.visits, &bc = t.cdf, &bs = t.sums, &bn = t.counts,
+              &bp = t.pointUpdates, &br = t.rowPasses;
   std::vector<uint32_t> noUpdates(points, 0);
   const float kUntouched = -1.0f;  // CDF sentinel: rows the pass skips keep it
   bc.upload<float>(ctx(), std::vector<float>(n, kUntouched));
@@ -53,23 +84,8 @@ TEST_F(QUpdateGpu, UpdateAndCdfMatchCpuReference) {
   bv.upload<uint32_t>(ctx(), visits);
   bs.upload<uint32_t>(ctx(), fixedSums);
   bn.upload<uint32_t>(ctx(), counts);
-  gpu::ComputePipeline update(ctx(), "q_update");
   auto learningPass = [&](uint32_t everyRow) {
-    ctx().submitAndWait([&](VkCommandBuffer cmd) {
-      gpu::PassRecorder rec(ctx(), cmd);
-      shared::TableUpdatePush push{points, strata, rows, cols, 1, aMin, aMax, qFloor, everyRow};
-      rec.pass("q_update", update)
-          .write(QL_Q_UPDATE_BIND_VALUES, bq)
-          .write(QL_Q_UPDATE_BIND_VISITS, bv)
-          .write(QL_Q_UPDATE_BIND_CDF, bc)
-          .write(QL_Q_UPDATE_BIND_SUMS, bs)
-          .write(QL_Q_UPDATE_BIND_COUNTS, bn)
-          .write(QL_Q_UPDATE_BIND_POINT_UPDATES, bp)
-          .write(QL_Q_UPDATE_BIND_ROW_PASSES, br)
-          .push(push)
-          .dispatch((points + QL_Q_UPDATE_GROUP_SIZE - 1) / QL_Q_UPDATE_GROUP_SIZE);
-      rec.finish();
-    });
+    t.learningPass(ctx(), {points, strata, rows, cols, 1, aMin, aMax, qFloor, everyRow});
   };
   learningPass(0);
   auto skipped = bc.read<float>(ctx());
@@ -138,9 +154,9 @@ TEST_F(QUpdateGpu, HalfLifeAgesCountsByThePassesSinceTheRowsLastUpdate) {
   std::vector<uint32_t> fixedSums(2 * n, 0), pointUpdates{900, 900}, rowPasses{lastPass, lastPass};
   fixedSums[0] = uint32_t(4 * 3.0 * shared::kTargetScale);  // 4 targets of 3
   fixedSums[4] = uint32_t(2 * 2.0 * shared::kTargetScale);  // 2 targets of 2
-  gpu::Buffer bq(ctx(), n * 4, "q"), bv(ctx(), n * 4, "visits"), bc(ctx(), n * 4, "cdf"),
-      bs(ctx(), n * 8, "sums"), bn(ctx(), n * 4, "counts"), bp(ctx(), points * 4, "pointUpdates"),
-      br(ctx(), points * 4, "rowPasses");
+  TableBuffers t(ctx(), n, points);
+  gpu::Buffer &bq = t.q, &bv = t.visits, &bc = t.cdf, &bs = t.sums, &bn = t.counts,
+              &bp = t.pointUpdates, &br = t.rowPasses;
   bq.upload<float>(ctx(), q);
   bv.upload<uint32_t>(ctx(), visits);
   bc.upload<float>(ctx(), std::vector<float>(n, 0.0f));
@@ -148,23 +164,8 @@ TEST_F(QUpdateGpu, HalfLifeAgesCountsByThePassesSinceTheRowsLastUpdate) {
   bn.upload<uint32_t>(ctx(), counts);
   bp.upload<uint32_t>(ctx(), pointUpdates);
   br.upload<uint32_t>(ctx(), rowPasses);
-  gpu::ComputePipeline update(ctx(), "q_update");
-  ctx().submitAndWait([&](VkCommandBuffer cmd) {
-    gpu::PassRecorder rec(ctx(), cmd);
-    shared::TableUpdatePush push{points, strata,          rows, cols, 1, aMin, aMax, qFloor, 0,
-                                 pass,   -1.0f / halfLife};
-    rec.pass("q_update", update)
-        .write(QL_Q_UPDATE_BIND_VALUES, bq)
-        .write(QL_Q_UPDATE_BIND_VISITS, bv)
-        .write(QL_Q_UPDATE_BIND_CDF, bc)
-        .write(QL_Q_UPDATE_BIND_SUMS, bs)
-        .write(QL_Q_UPDATE_BIND_COUNTS, bn)
-        .write(QL_Q_UPDATE_BIND_POINT_UPDATES, bp)
-        .write(QL_Q_UPDATE_BIND_ROW_PASSES, br)
-        .push(push)
-        .dispatch(1);
-    rec.finish();
-  });
+  t.learningPass(ctx(),
+                 {points, strata, rows, cols, 1, aMin, aMax, qFloor, 0, pass, -1.0f / halfLife});
   auto gq = bq.read<float>(ctx());
   auto gv = bv.read<uint32_t>(ctx());
   auto gp = bp.read<uint32_t>(ctx());

@@ -27,6 +27,13 @@ double relativeMse(const image::LinearImage& x, const image::LinearImage& ref) {
 
 class DisplayFilterTest : public GpuTest {
  protected:
+  const scene::SceneAsset asset_ = gltf::loadGltf(assetPath("cornell_box.gltf"));
+  // 48x48 unguided, `spp` samples a frame.
+  render::RenderSettings settings(uint32_t seed, uint32_t spp) {
+    render::RenderSettings s = smallSettings(48, 48, seed);
+    s.samplesPerFrame = spp;
+    return s;
+  }
   // 512 spp of the scene from `camera`, another seed: the converged image to compare with.
   image::LinearImage reference(const scene::SceneAsset& asset, render::RenderSettings s,
                                const render::CameraView& camera) {
@@ -61,10 +68,8 @@ class DisplayFilterTest : public GpuTest {
 };
 
 TEST_F(DisplayFilterTest, ReusesHistoryWhileMovingAndConvergesToTheAccumulationWhenStill) {
-  const scene::SceneAsset asset = gltf::loadGltf(assetPath("cornell_box.gltf"));
-  render::RenderSettings s = smallSettings(48, 48, 5);
-  s.samplesPerFrame = 1;
-  session::Renderer renderer(ctx(), asset, s, session::disabledGuiding(), 1.0f);
+  const render::RenderSettings s = settings(5, 1);
+  session::Renderer renderer(ctx(), asset_, s, session::disabledGuiding(), 1.0f);
   const render::CameraView start = renderer.world().camera();
   auto cameraAt = [&](int frame) {  // a slow slide sideways: 2 mm a frame
     render::CameraView v = start;
@@ -72,17 +77,17 @@ TEST_F(DisplayFilterTest, ReusesHistoryWhileMovingAndConvergesToTheAccumulationW
     return v;
   };
   ui::DisplayFilter filter(ctx());
-  ui::DisplayFilterSettings settings;  // history reuse on, no denoiser
+  ui::DisplayFilterSettings filterSettings;  // history reuse on, no denoiser
   const int moving = 16;
   for (int f = 0; f <= moving; ++f) {
     renderer.renderFrame(0.0f, cameraAt(f));
-    filterFrame(filter, renderer, cameraAt(f), settings);
+    filterFrame(filter, renderer, cameraAt(f), filterSettings);
   }
   ASSERT_EQ(renderer.tracer().keptOfPrevious(), 0.0f) << "each moving frame restarts";
   ASSERT_EQ(renderer.tracer().accumulatedSamples(), 1u);
   const image::LinearImage raw = renderer.tracer().readImage();
   const image::LinearImage shown = meanImage(filter.output());
-  const image::LinearImage converged = reference(asset, s, cameraAt(moving));
+  const image::LinearImage converged = reference(asset_, s, cameraAt(moving));
   const double rawError = relativeMse(raw, converged);
   const double shownError = relativeMse(shown, converged);
   // Up to 8 frames of history: about an eighth of the 1-spp variance, plus the lag of a 2 mm
@@ -93,7 +98,7 @@ TEST_F(DisplayFilterTest, ReusesHistoryWhileMovingAndConvergesToTheAccumulationW
   // Still: the history fades (0.8 a frame) under the growing accumulation.
   for (int f = 0; f < 40; ++f) {
     renderer.renderFrame(0.0f, cameraAt(moving));
-    filterFrame(filter, renderer, cameraAt(moving), settings);
+    filterFrame(filter, renderer, cameraAt(moving), filterSettings);
   }
   const image::LinearImage accumulated = renderer.tracer().readImage();
   const double difference = relativeMse(meanImage(filter.output()), accumulated);
@@ -102,19 +107,17 @@ TEST_F(DisplayFilterTest, ReusesHistoryWhileMovingAndConvergesToTheAccumulationW
 }
 
 TEST_F(DisplayFilterTest, DenoiserLowersTheErrorOfAStillFrame) {
-  const scene::SceneAsset asset = gltf::loadGltf(assetPath("cornell_box.gltf"));
-  render::RenderSettings s = smallSettings(48, 48, 7);
-  s.samplesPerFrame = 4;
-  session::Renderer renderer(ctx(), asset, s, session::disabledGuiding(), 1.0f);
+  const render::RenderSettings s = settings(7, 4);
+  session::Renderer renderer(ctx(), asset_, s, session::disabledGuiding(), 1.0f);
   const render::CameraView camera = renderer.world().camera();
   renderer.renderFrame(0.0f, camera);
   const auto before = renderer.tracer().accumulation().readFloats(ctx());
   ui::DisplayFilter filter(ctx());
-  ui::DisplayFilterSettings settings;
-  settings.denoise = true;
-  filterFrame(filter, renderer, camera, settings);
+  ui::DisplayFilterSettings filterSettings;
+  filterSettings.denoise = true;
+  filterFrame(filter, renderer, camera, filterSettings);
   EXPECT_EQ(renderer.tracer().accumulation().readFloats(ctx()), before) << "display only";
-  const image::LinearImage converged = reference(asset, s, camera);
+  const image::LinearImage converged = reference(asset_, s, camera);
   const double rawError = relativeMse(renderer.tracer().readImage(), converged);
   const double denoisedError = relativeMse(meanImage(filter.output()), converged);
   std::printf("denoiser: relMSE %.4f -> %.4f\n", rawError, denoisedError);
