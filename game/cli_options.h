@@ -5,6 +5,7 @@
 
 #include "engine/guiding/guiding_settings.h"
 #include "engine/render/render_settings.h"
+#include "game/setting_words.h"
 
 namespace qlight::game {
 
@@ -32,6 +33,8 @@ void finishGuidingOptions(const GuidingCli& cli, guiding::GuidingSettings& g,
 // CLI::Range for real numbers that also refuses NaN and infinities (CLI11's range check
 // lets NaN through: every comparison with it is false).
 CLI::Validator finiteRange(double lowest, double highest);
+CLI::Validator finiteRange(Range range);
+CLI::Validator wholeRange(Range range);  // integers within the range
 
 // Exit code when the validation layer reported something (tests treat it as failure).
 constexpr int kExitValidation = 3;

@@ -108,7 +108,7 @@ std::function<int()> addDemoCommand(CLI::App& app, const CommonOptions& common) 
                   "headless: write every Nth frame (0: last only)");
   cmd->add_option("--out", args->outDir, "headless: output folder")->capture_default_str();
   cmd->add_option("--spp-per-frame", args->settings.samplesPerFrame, "samples per pixel per frame")
-      ->check(CLI::Range(1, 4096));
+      ->check(wholeRange(ranges::kSamplesPerFrame));
   cmd->add_flag("--headless", args->headless, "render frames to files even with a display");
   cmd->add_option("--exit-after-frames", args->exitAfterFrames,
                   "window: close after this many frames (0: never)");
@@ -116,11 +116,11 @@ std::function<int()> addDemoCommand(CLI::App& app, const CommonOptions& common) 
                   "window: write the render as PNG on closing");
   cmd->add_option("--render-scale", args->renderScale,
                   "window: render size as a share of the window's (a still camera's)")
-      ->check(finiteRange(0.1, 1.0))
+      ->check(finiteRange(ranges::kRenderScale))
       ->capture_default_str();
   cmd->add_option("--target-frame-ms", args->targetFrameMs,
                   "window: frame time held by a smaller render while the camera moves (0: off)")
-      ->check(finiteRange(0.0, 10000.0))
+      ->check(finiteRange(ranges::kTargetFrameMs))
       ->capture_default_str();
   cmd->add_option("--scripted-move-frames", args->scriptedMoveFrames,
                   "window: fly forward for the first N frames, then stay still")

@@ -38,9 +38,7 @@ int runRender(RenderArgs a, const CommonOptions& common) {
   stats["time"] = a.time;
   stats["max_depth"] = s.maxDepth;
   stats["seed"] = s.seed;
-  stats["estimator"] = s.estimator == render::Estimator::Mis        ? "mis"
-                       : s.estimator == render::Estimator::BsdfOnly ? "bsdf"
-                                                                    : "nee";
+  stats["estimator"] = wordOf(estimatorWords(), s.estimator);
   stats["russian_roulette"] = s.russianRoulette;
   if (a.guiding.enabled) {
     stats["strata"] = std::to_string(a.guiding.rows) + "x" + std::to_string(a.guiding.cols);
@@ -64,7 +62,7 @@ std::function<int()> addRenderCommand(CLI::App& app, const CommonOptions& common
   cmd->add_option("--out", args->out, "output image (.png, .pfm or .exr)")->required();
   cmd->add_option("--spp", args->spp, "samples per pixel")->check(CLI::Range(1, 1 << 20));
   cmd->add_option("--batch", args->batch, "samples per pixel per GPU submission")
-      ->check(CLI::Range(1, 4096));
+      ->check(wholeRange(ranges::kSamplesPerFrame));
   cmd->add_option("--time", args->time, "animation time in seconds")->check(finiteRange(0.0, 1e6));
   cmd->add_option("--stats-json", args->statsJson, "write render statistics here");
   addRenderOptions(*cmd, args->settings);
