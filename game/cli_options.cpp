@@ -1,8 +1,10 @@
 #include "game/cli_options.h"
 
 #include <cmath>
+#include <cstdio>
 
 #include "game/setting_words.h"
+#include "game/settings_file.h"
 
 namespace qlight::game {
 
@@ -87,6 +89,21 @@ void finishGuidingOptions(const GuidingCli& cli, guiding::GuidingSettings& g,
     r.estimator = render::Estimator::Mis;
   g.seed = r.seed;
   guiding::validate(g);
+}
+
+void addSettingsOption(CLI::App& app, std::string& file) {
+  app.add_option("--settings", file,
+                 "settings file (JSON) to start from; options given here override it");
+}
+
+void applySettingsFile(const CLI::App& cmd, const std::string& file, Settings& s) {
+  if (file.empty()) return;
+  auto given = [&cmd](const std::string& option) {
+    const CLI::Option* o = cmd.get_option_no_throw(option);
+    return o && o->count() > 0;
+  };
+  for (const std::string& warning : loadSettingsFile(file, s, given))
+    std::fprintf(stderr, "qlight: warning: %s\n", warning.c_str());
 }
 
 }  // namespace qlight::game

@@ -114,11 +114,11 @@ std::function<int()> addDemoCommand(CLI::App& app, const CommonOptions& common) 
                   "window: close after this many frames (0: never)");
   cmd->add_option("--screenshot-at-exit", args->screenshotAtExit,
                   "window: write the render as PNG on closing");
-  cmd->add_option("--render-scale", args->renderScale,
+  cmd->add_option("--render-scale", args->window.renderScale,
                   "window: render size as a share of the window's (a still camera's)")
       ->check(finiteRange(ranges::kRenderScale))
       ->capture_default_str();
-  cmd->add_option("--target-frame-ms", args->targetFrameMs,
+  cmd->add_option("--target-frame-ms", args->window.targetFrameMs,
                   "window: frame time held by a smaller render while the camera moves (0: off)")
       ->check(finiteRange(ranges::kTargetFrameMs))
       ->capture_default_str();
@@ -130,8 +130,14 @@ std::function<int()> addDemoCommand(CLI::App& app, const CommonOptions& common) 
   args->guiding.halfLifeFrames = kDemoHalfLifeFrames;
   addRenderOptions(*cmd, args->settings);
   addGuidingOptions(*cmd, args->guiding, args->guidingCli);
+  addSettingsOption(*cmd, args->settingsFile);
   return [cmd, args, &common]() -> int {
     if (!cmd->parsed()) return -1;
+    Settings file{args->settings, args->guiding, args->window};
+    applySettingsFile(*cmd, args->settingsFile, file);
+    args->settings = file.render;
+    args->guiding = file.guiding;
+    args->window = file.window;
     finishGuidingOptions(args->guidingCli, args->guiding, args->settings);
     if (!args->headless && displayAvailable() && glfwInit()) {
       args->scene = resolveScene(args->scene);

@@ -5,6 +5,7 @@
 
 #include "engine/render/render_settings.h"
 #include "game/cli_options.h"
+#include "game/settings.h"
 
 namespace qlight::game {
 
@@ -19,12 +20,12 @@ struct DemoArgs {
   render::RenderSettings settings;
   guiding::GuidingSettings guiding;  // Q-learned guiding (on by default)
   GuidingCli guidingCli;
-  // Window mode: the render is the window's size times renderScale (a smaller
+  // Window mode: the render is the window's size times window.renderScale (a smaller
   // render keeps a software rasterizer interactive); settings.width/height are unused.
   uint32_t windowWidth = 960;
   uint32_t windowHeight = 540;
-  float renderScale = 0.5f;
-  float targetFrameMs = 100.0f;     // dynamic resolution while the camera moves (0: off)
+  WindowSettings window;            // render scale, dynamic resolution
+  std::string settingsFile;         // --settings
   uint32_t scriptedMoveFrames = 0;  // fly forward for the first N frames (tests, timing)
   uint32_t exitAfterFrames = 0;     // 0: run until the window closes
   std::string screenshotAtExit;     // PNG of the render written when the window closes

@@ -23,7 +23,7 @@ namespace {
 // The first frame's render size: the requested window times the scale.
 render::RenderSettings initialSettings(const DemoArgs& args) {
   render::RenderSettings s = args.settings;
-  float scale = std::clamp(args.renderScale, 0.1f, 1.0f);
+  float scale = std::clamp(args.window.renderScale, 0.1f, 1.0f);
   s.width = std::max(1u, uint32_t(std::lround(args.windowWidth * scale)));
   s.height = std::max(1u, uint32_t(std::lround(args.windowHeight * scale)));
   return s;
@@ -47,7 +47,7 @@ WindowApp::WindowApp(const DemoArgs& args, const CommonOptions& common)
       presenter_(*ctx_, window_),
       imgui_(*ctx_, window_, presenter_),
       wanted_(initialSettings(args)),
-      renderScale_(std::clamp(args.renderScale, 0.1f, 1.0f)),
+      renderScale_(std::clamp(args.window.renderScale, 0.1f, 1.0f)),
       lowestScale_(renderScale_),
       renderer_(*ctx_, asset_, wanted_, args.guiding,
                 float(args.windowWidth) / float(std::max(args.windowHeight, 1u))),
@@ -55,8 +55,8 @@ WindowApp::WindowApp(const DemoArgs& args, const CommonOptions& common)
       guidingWanted_(args.guiding),
       input_(window_.handle()) {
   clock_.duration = asset_.animationDuration();
-  dynamic_.enabled = args.targetFrameMs > 0.0f;
-  if (dynamic_.enabled) dynamic_.targetMs = args.targetFrameMs;
+  dynamic_.enabled = args.window.targetFrameMs > 0.0f;
+  if (dynamic_.enabled) dynamic_.targetMs = args.window.targetFrameMs;
   dynamic_.scale = renderScale_;
   resetCamera();
   registerDisplay();

@@ -78,8 +78,8 @@ TEST_F(WindowDemo, PresentsFramesWithoutValidationMessagesAndWritesScreenshot) {
   unsigned char* pixels = stbi_load(shot.string().c_str(), &w, &h, &channels, 3);
   ASSERT_NE(pixels, nullptr) << stbi_failure_reason();
   game::DemoArgs defaults;
-  EXPECT_EQ(w, int(defaults.windowWidth * defaults.renderScale));
-  EXPECT_EQ(h, int(defaults.windowHeight * defaults.renderScale));
+  EXPECT_EQ(w, int(defaults.windowWidth * defaults.window.renderScale));
+  EXPECT_EQ(h, int(defaults.windowHeight * defaults.window.renderScale));
   double sum = 0;
   for (int i = 0; i < w * h * 3; ++i) sum += pixels[i];
   stbi_image_free(pixels);
@@ -106,11 +106,11 @@ TEST_F(WindowDemo, DynamicResolutionLowersWhileMovingAndRestoresWhenStill) {
   ASSERT_EQ(std::sscanf(run.output.c_str() + at, "render scale %f, lowest %f", &now, &lowest), 2)
       << run.output;
   game::DemoArgs defaults;
-  EXPECT_FLOAT_EQ(now, defaults.renderScale) << run.output;
-  EXPECT_LT(lowest, 0.8f * defaults.renderScale) << run.output;
+  EXPECT_FLOAT_EQ(now, defaults.window.renderScale) << run.output;
+  EXPECT_LT(lowest, 0.8f * defaults.window.renderScale) << run.output;
   int w = 0, h = 0, channels = 0;
   ASSERT_TRUE(stbi_info(shot.string().c_str(), &w, &h, &channels)) << run.output;
-  EXPECT_EQ(w, int(defaults.windowWidth * defaults.renderScale));
+  EXPECT_EQ(w, int(defaults.windowWidth * defaults.window.renderScale));
 }
 
 }  // namespace
