@@ -122,16 +122,23 @@ std::function<int()> addDemoCommand(CLI::App& app, const CommonOptions& common) 
                   "window: frame time held by a smaller render while the camera moves (0: off)")
       ->check(finiteRange(ranges::kTargetFrameMs))
       ->capture_default_str();
+  cmd->add_option("--vsync", args->window.vsync,
+                  "window: on waits for vertical blank (FIFO); off presents every frame")
+      ->transform(CLI::CheckedTransformer(onOffWords(), CLI::ignore_case));
   cmd->add_option("--scripted-move-frames", args->scriptedMoveFrames,
                   "window: fly forward for the first N frames, then stay still")
       ->check(CLI::Range(0, 1000000));
+  auto script = std::make_shared<std::vector<std::string>>();
+  cmd->add_option("--script", *script,
+                  "window: FRAME:resize=WxH, FRAME:vsync=on|off, FRAME:load=FILE or "
+                  "FRAME:save=FILE (repeatable; tests)");
   args->settings.temporalBlend = 0.7f;  // the demo keeps a fading history of animated frames
   // The demo's lights move: what was learned fades (the tracking study: docs/tracking.md).
   args->guiding.halfLifeFrames = kDemoHalfLifeFrames;
   addRenderOptions(*cmd, args->settings);
   addGuidingOptions(*cmd, args->guiding, args->guidingCli);
   addSettingsOption(*cmd, args->settingsFile);
-  return [cmd, args, &common]() -> int {
+  return [cmd, args, script, &common]() -> int {
     if (!cmd->parsed()) return -1;
     Settings file{args->settings, args->guiding, args->window};
     applySettingsFile(*cmd, args->settingsFile, file);
@@ -139,6 +146,7 @@ std::function<int()> addDemoCommand(CLI::App& app, const CommonOptions& common) 
     args->guiding = file.guiding;
     args->window = file.window;
     finishGuidingOptions(args->guidingCli, args->guiding, args->settings);
+    for (const std::string& step : *script) args->script.push_back(parseScriptStep(step));
     if (!args->headless && displayAvailable() && glfwInit()) {
       args->scene = resolveScene(args->scene);
       return runWindowed(*args, common);

@@ -2,10 +2,12 @@
 // frame, fly controls, and the Dear ImGui panel.
 #pragma once
 #include <string>
+#include <vector>
 
 #include "engine/render/render_settings.h"
 #include "game/cli_options.h"
 #include "game/settings.h"
+#include "game/window_script.h"
 
 namespace qlight::game {
 
@@ -24,9 +26,10 @@ struct DemoArgs {
   // render keeps a software rasterizer interactive); settings.width/height are unused.
   uint32_t windowWidth = 960;
   uint32_t windowHeight = 540;
-  WindowSettings window;            // render scale, dynamic resolution
-  std::string settingsFile;         // --settings
+  WindowSettings window;            // render scale, dynamic resolution, vsync
+  std::string settingsFile;         // --settings: also where the panel saves and loads
   uint32_t scriptedMoveFrames = 0;  // fly forward for the first N frames (tests, timing)
+  std::vector<ScriptStep> script;   // --script: resize, vsync, load, save at given frames
   uint32_t exitAfterFrames = 0;     // 0: run until the window closes
   std::string screenshotAtExit;     // PNG of the render written when the window closes
 };
