@@ -40,8 +40,9 @@ class WindowDemo : public ::testing::Test {
     if (!std::getenv("DISPLAY") && !XvfbServer::installed())
       GTEST_SKIP() << "no DISPLAY and Xvfb is not installed";
     std::string error;
-    // A display of its own per test: ctest runs the two at once, and a test that shared the
-    // other's server would lose it when the other ends.
+    // A display of its own per test: ctest runs two at once, and a test that shared the
+    // other's server would lose it when the other ends. The numbers come from the test names
+    // (143, 146 and 116 today): a new test needs a name whose number is not taken.
     const std::string name = ::testing::UnitTest::GetInstance()->current_test_info()->name();
     display_ = server_.start(97 + int(std::hash<std::string>{}(name) % 64), error);
     ASSERT_FALSE(display_.empty()) << error;
@@ -121,7 +122,7 @@ TEST_F(WindowDemo, DynamicResolutionLowersWhileMovingAndRestoresWhenStill) {
 // on, "save settings", "load settings" of another file (its render scale applies) and of a
 // missing one (a message, not an exit). Each resize and the vsync switch rebuild the
 // swapchain without a validation message; the saved file replays in `qlight render`.
-TEST_F(WindowDemo, SettingsFileResizeAndVsyncRebuildTheSwapchainCleanly) {
+TEST_F(WindowDemo, SettingsFileResizeAndVsyncRebuildSwapchainCleanly) {
   const fs::path start = dir_ / "start.json", later = dir_ / "later.json",
                  saved = dir_ / "saved.json", shot = dir_ / "shot.png";
   std::ofstream(start) << R"({"render": {"exposure": 1.5, "max_depth": 4, "spp_per_frame": 2},
