@@ -1,7 +1,10 @@
 #include "game/cli_options.h"
 
 #include <cmath>
-#include <map>
+#include <cstdio>
+
+#include "game/setting_words.h"
+#include "game/settings_file.h"
 
 namespace qlight::game {
 
@@ -19,66 +22,61 @@ CLI::Validator finiteRange(double lowest, double highest) {
       "FLOAT in " + range);
 }
 
+CLI::Validator finiteRange(Range r) { return finiteRange(r.lowest, r.highest); }
+
+CLI::Validator wholeRange(Range r) { return CLI::Range(int64_t(r.lowest), int64_t(r.highest)); }
+
 void addRenderOptions(CLI::App& app, render::RenderSettings& s) {
-  app.add_option("--width", s.width, "image width in pixels")->check(CLI::Range(1, 16384));
-  app.add_option("--height", s.height, "image height in pixels")->check(CLI::Range(1, 16384));
+  app.add_option("--width", s.width, "image width in pixels")
+      ->check(wholeRange(ranges::kImageSize));
+  app.add_option("--height", s.height, "image height in pixels")
+      ->check(wholeRange(ranges::kImageSize));
   addTracingOptions(app, s);
   app.add_option("--exposure", s.exposure, "exposure multiplier for PNG and display")
-      ->check(finiteRange(1e-6, 1e6));
+      ->check(finiteRange(ranges::kExposure));
   app.add_option(
          "--temporal-blend", s.temporalBlend,
          "animated scenes: weight kept of the accumulated image when things move (0: restart)")
-      ->check(finiteRange(0.0, 0.99));
-  std::map<std::string, image::Tonemap> tonemaps{{"aces", image::Tonemap::Aces},
-                                                 {"clamp", image::Tonemap::Clamp}};
+      ->check(finiteRange(ranges::kTemporalBlend));
   app.add_option("--tonemap", s.tonemap, "aces or clamp (PNG and display only)")
-      ->transform(CLI::CheckedTransformer(tonemaps, CLI::ignore_case));
+      ->transform(CLI::CheckedTransformer(tonemapWords(), CLI::ignore_case));
 }
 
 void addTracingOptions(CLI::App& app, render::RenderSettings& s) {
   app.add_option("--seed", s.seed, "random seed (same seed, same image)");
   app.add_option("--max-depth", s.maxDepth, "bounces: 0 = emitters only, 1 = direct light")
-      ->check(CLI::Range(0, 1024));
-  std::map<std::string, render::Estimator> estimators{{"mis", render::Estimator::Mis},
-                                                      {"bsdf", render::Estimator::BsdfOnly},
-                                                      {"nee", render::Estimator::NeeOnly}};
+      ->check(wholeRange(ranges::kMaxDepth));
   app.add_option("--estimator", s.estimator, "mis (NEE + BSDF, power heuristic), bsdf or nee")
-      ->transform(CLI::CheckedTransformer(estimators, CLI::ignore_case));
-  std::map<std::string, bool> onOff{{"on", true}, {"off", false}};
+      ->transform(CLI::CheckedTransformer(estimatorWords(), CLI::ignore_case));
   app.add_option("--rr", s.russianRoulette, "Russian roulette: on|off")
-      ->transform(CLI::CheckedTransformer(onOff, CLI::ignore_case));
+      ->transform(CLI::CheckedTransformer(onOffWords(), CLI::ignore_case));
 }
 
 void addGuidingOptions(CLI::App& app, guiding::GuidingSettings& g, GuidingCli& cli) {
-  std::map<std::string, bool> guidingModes{{"q", true}, {"off", false}};
   app.add_option("--guiding", g.enabled, "q (Q-learned importance sampling) or off")
-      ->transform(CLI::CheckedTransformer(guidingModes, CLI::ignore_case));
+      ->transform(
+          CLI::CheckedTransformer(Words<bool>{{"q", true}, {"off", false}}, CLI::ignore_case));
   app.add_option("--strata", cli.strata, "hemisphere strata RxC, e.g. 8x8 or 16x8");
   app.add_option("--alpha-min", g.alphaMin, "learning rate floor (keeps tracking moving lights)");
   app.add_option("--alpha-max", g.alphaMax, "learning rate ceiling");
   app.add_option("--half-life", g.halfLifeFrames,
                  "tracking: frames after which what was learned counts half (0: never forget)")
-      ->check(finiteRange(0.0, 1e6));
+      ->check(finiteRange(ranges::kHalfLife));
   app.add_option("--points", g.pointBudget,
                  "cache point budget (default 0: one point per 8 paths per frame, 256..16384)");
   app.add_option("--select-probability", g.selectProbability,
                  "share of guided samples at diffuse vertices, 0..0.95 (BSDF sampling the rest)");
   app.add_option("--confidence-updates", g.confidenceUpdates,
                  "Q updates per stratum before a point guides at the full share (0: at once)");
-  std::map<std::string, guiding::LearningTarget> targets{
-      {"returns", guiding::LearningTarget::Returns}, {"td", guiding::LearningTarget::TdStep}};
   app.add_option("--learning-target", g.target,
                  "returns (radiance each direction brought back, NEE included) or td (D&K's "
                  "one-step target)")
-      ->transform(CLI::CheckedTransformer(targets, CLI::ignore_case));
-  std::map<std::string, guiding::PointSet> sets{{"photon", guiding::PointSet::PhotonMap},
-                                                {"poisson", guiding::PointSet::PoissonAo}};
+      ->transform(CLI::CheckedTransformer(learningTargetWords(), CLI::ignore_case));
   app.add_option("--point-set", g.pointSet,
                  "photon (fixed rejection distance) or poisson (distance from ambient occlusion)")
-      ->transform(CLI::CheckedTransformer(sets, CLI::ignore_case));
-  std::map<std::string, bool> onOff{{"on", true}, {"off", false}};
+      ->transform(CLI::CheckedTransformer(pointSetWords(), CLI::ignore_case));
   app.add_option("--light-learning", g.lightLearning, "learned light selection for NEE: on|off")
-      ->transform(CLI::CheckedTransformer(onOff, CLI::ignore_case));
+      ->transform(CLI::CheckedTransformer(onOffWords(), CLI::ignore_case));
   app.add_option("--nee", cli.nee, "next event estimation: on (MIS with scattering) or off")
       ->check(CLI::IsMember({"on", "off"}, CLI::ignore_case));
 }
@@ -91,6 +89,21 @@ void finishGuidingOptions(const GuidingCli& cli, guiding::GuidingSettings& g,
     r.estimator = render::Estimator::Mis;
   g.seed = r.seed;
   guiding::validate(g);
+}
+
+void addSettingsOption(CLI::App& app, std::string& file) {
+  app.add_option("--settings", file,
+                 "settings file (JSON) to start from; options given here override it");
+}
+
+void applySettingsFile(const CLI::App& cmd, const std::string& file, Settings& s) {
+  if (file.empty()) return;
+  auto given = [&cmd](const std::string& option) {
+    const CLI::Option* o = cmd.get_option_no_throw(option);
+    return o && o->count() > 0;
+  };
+  for (const std::string& warning : loadSettingsFile(file, s, given))
+    std::fprintf(stderr, "qlight: warning: %s\n", warning.c_str());
 }
 
 }  // namespace qlight::game

@@ -5,6 +5,8 @@
 
 #include "engine/guiding/guiding_settings.h"
 #include "engine/render/render_settings.h"
+#include "game/setting_words.h"
+#include "game/settings.h"
 
 namespace qlight::game {
 
@@ -32,6 +34,15 @@ void finishGuidingOptions(const GuidingCli& cli, guiding::GuidingSettings& g,
 // CLI::Range for real numbers that also refuses NaN and infinities (CLI11's range check
 // lets NaN through: every comparison with it is false).
 CLI::Validator finiteRange(double lowest, double highest);
+CLI::Validator finiteRange(Range range);
+CLI::Validator wholeRange(Range range);  // integers within the range
+
+// Adds --settings FILE (game/settings_file.h).
+void addSettingsOption(CLI::App& app, std::string& file);
+// After parsing: applies the settings file, when one was given, to the settings whose
+// options were not given on `cmd`'s command line, and prints its warnings. Throws
+// std::runtime_error (one line naming the file) when it cannot be read or parsed.
+void applySettingsFile(const CLI::App& cmd, const std::string& file, Settings& s);
 
 // Exit code when the validation layer reported something (tests treat it as failure).
 constexpr int kExitValidation = 3;

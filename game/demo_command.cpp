@@ -109,29 +109,31 @@ std::function<int()> addDemoCommand(CLI::App& app, const CommonOptions& common) 
                   "headless: write every Nth frame (0: last only)");
   cmd->add_option("--out", args->outDir, "headless: output folder")->capture_default_str();
   cmd->add_option("--spp-per-frame", args->settings.samplesPerFrame, "samples per pixel per frame")
-      ->check(CLI::Range(1, 4096));
+      ->check(wholeRange(ranges::kSamplesPerFrame));
   cmd->add_flag("--headless", args->headless, "render frames to files even with a display");
   cmd->add_option("--exit-after-frames", args->exitAfterFrames,
                   "window: close after this many frames (0: never)");
   cmd->add_option("--screenshot-at-exit", args->screenshotAtExit,
                   "window: write the render as PNG on closing");
-  cmd->add_option("--render-scale", args->renderScale,
+  cmd->add_option("--render-scale", args->window.renderScale,
                   "window: render size as a share of the window's (a still camera's)")
-      ->check(finiteRange(0.1, 1.0))
+      ->check(finiteRange(ranges::kRenderScale))
       ->capture_default_str();
-  cmd->add_option("--target-frame-ms", args->targetFrameMs,
+  cmd->add_option("--target-frame-ms", args->window.targetFrameMs,
                   "window: frame time held by a smaller render while the camera moves (0: off)")
-      ->check(finiteRange(0.0, 10000.0))
+      ->check(finiteRange(ranges::kTargetFrameMs))
       ->capture_default_str();
+  cmd->add_option("--vsync", args->window.vsync,
+                  "window: on waits for vertical blank (FIFO); off presents every frame")
+      ->transform(CLI::CheckedTransformer(onOffWords(), CLI::ignore_case));
   cmd->add_flag("--show-cache-points", args->showCachePoints,
                 "window: draw the cache points over the image from the start (panel: Guiding)");
-  std::map<std::string, bool> onOff{{"on", true}, {"off", false}};
   cmd->add_option("--reuse-history", args->reuseHistory,
                   "window: reproject the last frame while the camera moves, on|off (display only)")
-      ->transform(CLI::CheckedTransformer(onOff, CLI::ignore_case));
+      ->transform(CLI::CheckedTransformer(onOffWords(), CLI::ignore_case));
   cmd->add_option("--denoise", args->denoise,
                   "window: edge-aware a-trous denoiser, on|off (display only)")
-      ->transform(CLI::CheckedTransformer(onOff, CLI::ignore_case));
+      ->transform(CLI::CheckedTransformer(onOffWords(), CLI::ignore_case));
   cmd->add_option("--inspect-at", args->inspectAt,
                   "window: show the learned Q at this window pixel X Y instead of the cursor's")
       ->expected(2)
@@ -139,14 +141,25 @@ std::function<int()> addDemoCommand(CLI::App& app, const CommonOptions& common) 
   cmd->add_option("--scripted-move-frames", args->scriptedMoveFrames,
                   "window: fly forward for the first N frames, then stay still")
       ->check(CLI::Range(0, 1000000));
+  auto script = std::make_shared<std::vector<std::string>>();
+  cmd->add_option("--script", *script,
+                  "window: FRAME:resize=WxH, FRAME:vsync=on|off, FRAME:load=FILE or "
+                  "FRAME:save=FILE (repeatable; tests)");
   args->settings.temporalBlend = 0.7f;  // the demo keeps a fading history of animated frames
   // The demo's lights move: what was learned fades (the tracking study: docs/tracking.md).
   args->guiding.halfLifeFrames = kDemoHalfLifeFrames;
   addRenderOptions(*cmd, args->settings);
   addGuidingOptions(*cmd, args->guiding, args->guidingCli);
-  return [cmd, args, &common]() -> int {
+  addSettingsOption(*cmd, args->settingsFile);
+  return [cmd, args, script, &common]() -> int {
     if (!cmd->parsed()) return -1;
+    Settings file{args->settings, args->guiding, args->window};
+    applySettingsFile(*cmd, args->settingsFile, file);
+    args->settings = file.render;
+    args->guiding = file.guiding;
+    args->window = file.window;
     finishGuidingOptions(args->guidingCli, args->guiding, args->settings);
+    for (const std::string& step : *script) args->script.push_back(parseScriptStep(step));
     if (!args->headless && displayAvailable() && glfwInit()) {
       args->scene = resolveScene(args->scene);
       return runWindowed(*args, common);

@@ -6,6 +6,8 @@
 
 #include "engine/render/render_settings.h"
 #include "game/cli_options.h"
+#include "game/settings.h"
+#include "game/window_script.h"
 
 namespace qlight::game {
 
@@ -20,13 +22,14 @@ struct DemoArgs {
   render::RenderSettings settings;
   guiding::GuidingSettings guiding;  // Q-learned guiding (on by default)
   GuidingCli guidingCli;
-  // Window mode: the render is the window's size times renderScale (a smaller
+  // Window mode: the render is the window's size times window.renderScale (a smaller
   // render keeps a software rasterizer interactive); settings.width/height are unused.
   uint32_t windowWidth = 960;
   uint32_t windowHeight = 540;
-  float renderScale = 0.5f;
-  float targetFrameMs = 100.0f;     // dynamic resolution while the camera moves (0: off)
+  WindowSettings window;            // render scale, dynamic resolution, vsync
+  std::string settingsFile;         // --settings: also where the panel saves and loads
   uint32_t scriptedMoveFrames = 0;  // fly forward for the first N frames (tests, timing)
+  std::vector<ScriptStep> script;   // --script: resize, vsync, load, save at given frames
   uint32_t exitAfterFrames = 0;     // 0: run until the window closes
   std::string screenshotAtExit;     // PNG of the render written when the window closes
   bool showCachePoints = false;     // the cache points overlay from the start

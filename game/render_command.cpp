@@ -16,10 +16,10 @@ struct RenderArgs {
   std::string scene;
   std::string out;
   std::string statsJson;
+  std::string settingsFile;
   uint32_t spp = 64;
-  uint32_t batch = 4;
   float time = 0.0f;
-  render::RenderSettings settings;
+  render::RenderSettings settings;  // samplesPerFrame: --batch
   guiding::GuidingSettings guiding;
   GuidingCli guidingCli;
 };
@@ -30,7 +30,7 @@ int runRender(RenderArgs a, const CommonOptions& common) {
   scene::SceneAsset asset = gltf::loadGltf(a.scene);
   auto ctx = createContext(common, /*windowed=*/false);
   render::RenderSettings s = a.settings;
-  s.samplesPerFrame = std::min(a.batch, a.spp);
+  s.samplesPerFrame = std::min(s.samplesPerFrame, a.spp);
   session::OfflineRender result = session::renderScene(*ctx, asset, s, a.spp, a.time, a.guiding);
   image::writeImage(a.out, result.image, s.exposure, s.tonemap);
   nlohmann::json stats = session::statsToJson(result.stats);
@@ -38,9 +38,7 @@ int runRender(RenderArgs a, const CommonOptions& common) {
   stats["time"] = a.time;
   stats["max_depth"] = s.maxDepth;
   stats["seed"] = s.seed;
-  stats["estimator"] = s.estimator == render::Estimator::Mis        ? "mis"
-                       : s.estimator == render::Estimator::BsdfOnly ? "bsdf"
-                                                                    : "nee";
+  stats["estimator"] = wordOf(estimatorWords(), s.estimator);
   stats["russian_roulette"] = s.russianRoulette;
   if (a.guiding.enabled) {
     stats["strata"] = std::to_string(a.guiding.rows) + "x" + std::to_string(a.guiding.cols);
@@ -63,14 +61,22 @@ std::function<int()> addRenderCommand(CLI::App& app, const CommonOptions& common
   cmd->add_option("--scene", args->scene, "glTF scene (.gltf or .glb)")->required();
   cmd->add_option("--out", args->out, "output image (.png, .pfm or .exr)")->required();
   cmd->add_option("--spp", args->spp, "samples per pixel")->check(CLI::Range(1, 1 << 20));
-  cmd->add_option("--batch", args->batch, "samples per pixel per GPU submission")
-      ->check(CLI::Range(1, 4096));
+  args->settings.samplesPerFrame = 4;
+  // --spp-per-frame as in the demo and the settings file.
+  cmd->add_option("--batch,--spp-per-frame", args->settings.samplesPerFrame,
+                  "samples per pixel per GPU submission")
+      ->check(wholeRange(ranges::kSamplesPerFrame));
   cmd->add_option("--time", args->time, "animation time in seconds")->check(finiteRange(0.0, 1e6));
   cmd->add_option("--stats-json", args->statsJson, "write render statistics here");
   addRenderOptions(*cmd, args->settings);
   addGuidingOptions(*cmd, args->guiding, args->guidingCli);
+  addSettingsOption(*cmd, args->settingsFile);
   return [cmd, args, &common]() -> int {
     if (!cmd->parsed()) return -1;
+    Settings file{args->settings, args->guiding, {}};
+    applySettingsFile(*cmd, args->settingsFile, file);
+    args->settings = file.render;
+    args->guiding = file.guiding;
     return runRender(*args, common);
   };
 }

@@ -8,7 +8,8 @@ namespace qlight::game {
 
 PanelChanges drawQlightPanel(const StatsView& stats, render::RenderSettings& settings,
                              float& renderScale, DynamicResolution& dynamic, SceneClock& clock,
-                             FreeCamera& camera, const std::function<void()>& guidingSection) {
+                             FreeCamera& camera, const std::function<void()>& windowSection,
+                             const std::function<void()>& guidingSection) {
   PanelChanges changes;
   ImGui::SetNextWindowPos(ImVec2(8, 8), ImGuiCond_FirstUseEver);
   float height = std::min(ImGui::GetIO().DisplaySize.y - 16.0f, 640.0f);
@@ -23,6 +24,8 @@ PanelChanges drawQlightPanel(const StatsView& stats, render::RenderSettings& set
     if (ImGui::CollapsingHeader("Scene", ImGuiTreeNodeFlags_DefaultOpen))
       changes.scenePose = drawSceneSection(clock);
     if (ImGui::CollapsingHeader("Camera")) changes.resetCamera = drawCameraSection(camera);
+    if (windowSection && ImGui::CollapsingHeader("Window", ImGuiTreeNodeFlags_DefaultOpen))
+      windowSection();
     ImGui::TextDisabled("WASD QE move, drag look, wheel speed, F1 UI, F12 shot");
   }
   ImGui::End();

@@ -30,10 +30,12 @@ struct PanelChanges {
 };
 
 // Draws the whole panel; returns what the user changed this frame.
-// `guidingSection` draws the Guiding section (it owns the learned state).
+// `windowSection` draws the Window section (vsync, the settings file), `guidingSection` the
+// Guiding section (it owns the learned state).
 PanelChanges drawQlightPanel(const StatsView& stats, render::RenderSettings& settings,
                              float& renderScale, DynamicResolution& dynamic, SceneClock& clock,
-                             FreeCamera& camera, const std::function<void()>& guidingSection = {});
+                             FreeCamera& camera, const std::function<void()>& windowSection = {},
+                             const std::function<void()>& guidingSection = {});
 
 void drawStatsSection(const StatsView& view);
 bool drawRenderSection(render::RenderSettings& settings, float& renderScale,

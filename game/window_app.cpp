@@ -24,10 +24,23 @@ namespace {
 // The first frame's render size: the requested window times the scale.
 render::RenderSettings initialSettings(const DemoArgs& args) {
   render::RenderSettings s = args.settings;
-  float scale = std::clamp(args.renderScale, 0.1f, 1.0f);
+  float scale = std::clamp(args.window.renderScale, 0.1f, 1.0f);
   s.width = std::max(1u, uint32_t(std::lround(args.windowWidth * scale)));
   s.height = std::max(1u, uint32_t(std::lround(args.windowHeight * scale)));
   return s;
+}
+
+const char* presentModeName(VkPresentModeKHR mode) {
+  switch (mode) {
+    case VK_PRESENT_MODE_FIFO_KHR:
+      return "FIFO";
+    case VK_PRESENT_MODE_MAILBOX_KHR:
+      return "MAILBOX";
+    case VK_PRESENT_MODE_IMMEDIATE_KHR:
+      return "IMMEDIATE";
+    default:
+      return "other";
+  }
 }
 
 // Settings whose change alters what the tracer computes (not just the display).
@@ -45,20 +58,21 @@ WindowApp::WindowApp(const DemoArgs& args, const CommonOptions& common)
               "qlight: " + std::filesystem::path(args.scene).filename().string()),
       ctx_(createContext(common, true, ui::GlfwWindow::requiredInstanceExtensions(),
                          [this](VkInstance instance) { return window_.createSurface(instance); })),
-      presenter_(*ctx_, window_),
+      presenter_(*ctx_, window_, args.window.vsync),
       imgui_(*ctx_, window_, presenter_),
       wanted_(initialSettings(args)),
-      renderScale_(std::clamp(args.renderScale, 0.1f, 1.0f)),
+      renderScale_(std::clamp(args.window.renderScale, 0.1f, 1.0f)),
       lowestScale_(renderScale_),
       renderer_(*ctx_, asset_, wanted_, args.guiding,
                 float(args.windowWidth) / float(std::max(args.windowHeight, 1u))),
       display_(*ctx_),
       filter_(*ctx_),
       guidingWanted_(args.guiding),
-      input_(window_.handle()) {
+      input_(window_.handle()),
+      windowPanel_(args.settingsFile) {
   clock_.duration = asset_.animationDuration();
-  dynamic_.enabled = args.targetFrameMs > 0.0f;
-  if (dynamic_.enabled) dynamic_.targetMs = args.targetFrameMs;
+  dynamic_.enabled = args.window.targetFrameMs > 0.0f;
+  if (dynamic_.enabled) dynamic_.targetMs = args.window.targetFrameMs;
   dynamic_.scale = renderScale_;
   filterSettings_.reuseHistory = args.reuseHistory;
   filterSettings_.denoise = args.denoise;
@@ -170,6 +184,7 @@ int WindowApp::run() {
     }
     float step = float(std::min(dt, 0.25));  // a stall must not fling the camera
 
+    runScript(frames);
     imgui_.newFrame();
     FrameInput input =
         input_.read(imgui_.wantsMouse(), imgui_.wantsKeyboard(), ImGui::GetIO().MouseWheel);
@@ -188,8 +203,9 @@ int WindowApp::run() {
                      tracer.settings().height,
                      ctx_->deviceName(),
                      ctx_->deviceName().find("llvmpipe") == std::string::npos};
+      auto windowUi = [&] { drawWindowPanel(); };
       PanelChanges changes =
-          drawQlightPanel(view, wanted_, renderScale_, dynamic_, clock_, camera_, [&] {
+          drawQlightPanel(view, wanted_, renderScale_, dynamic_, clock_, camera_, windowUi, [&] {
             guiding::GuidingStats learned =
                 renderer_.guide() ? renderer_.guide()->stats() : guiding::GuidingStats{};
             GuidingPanelResult g = drawGuidingSection(guidingWanted_, learned);
@@ -240,6 +256,9 @@ int WindowApp::run() {
       1e3 * movingSeconds_ / std::max(movingFrames_, 1u));
   if (const std::string views = guideViews_.summary(); !views.empty())
     std::printf("qlight demo: guide views: %s\n", views.c_str());
+  std::printf("qlight demo: vsync %s (%s presentation), %u swapchains built\n",
+              presenter_.vsync() ? "on" : "off",
+              presentModeName(presenter_.swapchain().presentMode()), presenter_.recreations());
   if (!args_.screenshotAtExit.empty())
     writeScreenshot(renderer_.tracer(), args_.screenshotAtExit, wanted_.exposure, wanted_.tonemap);
   return finishContext(*ctx_);

@@ -16,6 +16,8 @@
 #include "game/demo_window.h"
 #include "game/dynamic_resolution.h"
 #include "game/ui_guide_views.h"
+#include "game/settings.h"
+#include "game/ui_window_panel.h"
 #include "game/window_camera.h"
 #include "game/window_input.h"
 #include "game/window_scene.h"
@@ -46,6 +48,16 @@ class WindowApp {
   void resetCamera();
   void registerDisplay();  // the present phase's tonemap pass
 
+  // The settings file (window_app_settings.cpp): what the panel shows, as a file would
+  // hold it; taking a loaded one; the panel's buttons; the scripted steps of this frame.
+  Settings currentSettings() const;
+  void useSettings(const Settings& s);
+  void saveSettings(const std::string& path);
+  void loadSettings(const std::string& path);
+  void report(const std::string& message, bool problem);  // in the panel and on stderr
+  void drawWindowPanel();
+  void runScript(uint32_t frame);
+
   DemoArgs args_;
   scene::SceneAsset asset_;
   ui::GlfwWindow window_;
@@ -68,6 +80,7 @@ class WindowApp {
   FreeCamera camera_;
   SceneClock clock_;
   FrameStats stats_;
+  WindowPanel windowPanel_;
   bool uiVisible_ = true;
   bool frameInFlight_ = false;
   bool screenshotPending_ = false;

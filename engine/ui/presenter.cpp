@@ -23,8 +23,9 @@ gpu::Unique<VkSemaphore> createSemaphore(VkDevice device) {
 
 }  // namespace
 
-Presenter::Presenter(const gpu::Context& ctx, const GlfwWindow& window, uint32_t framesInFlight)
-    : ctx_(ctx), window_(window) {
+Presenter::Presenter(const gpu::Context& ctx, const GlfwWindow& window, bool vsync,
+                     uint32_t framesInFlight)
+    : ctx_(ctx), window_(window), vsync_(vsync) {
   if (!ctx.surface()) throw std::runtime_error("presenter: the context has no window surface");
   VkDevice device = ctx.device();
   slots_.resize(std::max(1u, framesInFlight));
@@ -56,15 +57,23 @@ Presenter::Presenter(const gpu::Context& ctx, const GlfwWindow& window, uint32_t
 
 Presenter::~Presenter() { vkDeviceWaitIdle(ctx_.device()); }
 
+void Presenter::setVsync(bool vsync) {
+  if (vsync != vsync_) recreatePending_ = true;
+  vsync_ = vsync;
+}
+
 bool Presenter::recreate(WindowExtent extent) {
+  // Nothing may still use the old images, views or semaphores. The wait can take a while
+  // (a frame on a software rasterizer): the surface is asked for its size after it.
+  QL_VK(vkDeviceWaitIdle(ctx_.device()));
   VkSurfaceCapabilitiesKHR caps;
   QL_VK(vkGetPhysicalDeviceSurfaceCapabilitiesKHR(ctx_.physicalDevice(), ctx_.surface(), &caps));
-  if (caps.currentExtent.width == 0 || caps.currentExtent.height == 0) return false;
-  // Nothing may still use the old images, views or semaphores.
-  QL_VK(vkDeviceWaitIdle(ctx_.device()));
+  const VkExtent2D wanted{extent.width, extent.height};
+  const VkExtent2D size = Swapchain::extentFor(caps, wanted);
+  if (size.width == 0 || size.height == 0) return false;  // minimized: keep the old one
   framebuffers_.clear();
   renderFinished_.clear();
-  auto next = std::make_unique<Swapchain>(ctx_, VkExtent2D{extent.width, extent.height},
+  auto next = std::make_unique<Swapchain>(ctx_, caps, wanted, vsync_,
                                           swapchain_ ? swapchain_->handle() : VK_NULL_HANDLE);
   swapchain_ = std::move(next);
   if (!renderPass_) {

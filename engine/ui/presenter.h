@@ -1,4 +1,4 @@
-// Presents frames into a window: owns the swapchain (rebuilt on resize,
+// Presents frames into a window: owns the swapchain (rebuilt on resize, a vsync change,
 // VK_ERROR_OUT_OF_DATE_KHR or VK_SUBOPTIMAL_KHR, skipped while minimized), the
 // overlay render pass and its framebuffers, and per frame in flight a command
 // buffer, a fence and an acquire semaphore.
@@ -33,8 +33,10 @@ class Presenter {
   static constexpr VkPipelineStageFlags2 kAcquireWaitStage = VK_PIPELINE_STAGE_2_BLIT_BIT;
 
   // One frame in flight keeps single-buffered per-frame state (uniforms,
-  // counters, scene buffers) safe to rewrite once beginFrame() returns.
-  Presenter(const gpu::Context& ctx, const GlfwWindow& window, uint32_t framesInFlight = 1);
+  // counters, scene buffers) safe to rewrite once beginFrame() returns. `vsync`: FIFO
+  // presentation (see Swapchain).
+  Presenter(const gpu::Context& ctx, const GlfwWindow& window, bool vsync = false,
+            uint32_t framesInFlight = 1);
   Presenter(const Presenter&) = delete;
   Presenter& operator=(const Presenter&) = delete;
   ~Presenter();
@@ -44,6 +46,9 @@ class Presenter {
   std::optional<PresentTarget> beginFrame();
   // Ends the command buffer, submits it and presents the image.
   void endFrame(const PresentTarget& target);
+  // A change rebuilds the swapchain at the next beginFrame().
+  void setVsync(bool vsync);
+  bool vsync() const { return vsync_; }
 
   VkRenderPass overlayRenderPass() const { return renderPass_; }
   const Swapchain& swapchain() const { return *swapchain_; }
@@ -65,6 +70,7 @@ class Presenter {
   uint32_t slot_ = 0;
   std::unique_ptr<Swapchain> swapchain_;
   WindowExtent builtFor_;
+  bool vsync_ = false;
   bool recreatePending_ = true;
   uint32_t recreations_ = 0;
   gpu::Unique<VkRenderPass> renderPass_;

@@ -34,8 +34,9 @@ VkSurfaceFormatKHR chooseFormat(VkPhysicalDevice gpu, VkSurfaceKHR surface) {
   throw std::runtime_error("swapchain: the surface offers no format that can be a blit target");
 }
 
-// The path tracer wants every frame it can make: no waiting for vertical blank.
-VkPresentModeKHR choosePresentMode(VkPhysicalDevice gpu, VkSurfaceKHR surface) {
+// Without vsync the path tracer gets every frame it can make: no waiting for vertical blank.
+VkPresentModeKHR choosePresentMode(VkPhysicalDevice gpu, VkSurfaceKHR surface, bool vsync) {
+  if (vsync) return VK_PRESENT_MODE_FIFO_KHR;  // always supported
   uint32_t count = 0;
   QL_VK(vkGetPhysicalDeviceSurfacePresentModesKHR(gpu, surface, &count, nullptr));
   std::vector<VkPresentModeKHR> modes(count);
@@ -47,7 +48,14 @@ VkPresentModeKHR choosePresentMode(VkPhysicalDevice gpu, VkSurfaceKHR surface) {
 
 }  // namespace
 
-Swapchain::Swapchain(const gpu::Context& ctx, VkExtent2D wanted, VkSwapchainKHR old) {
+VkExtent2D Swapchain::extentFor(const VkSurfaceCapabilitiesKHR& caps, VkExtent2D wanted) {
+  if (caps.currentExtent.width != UINT32_MAX) return caps.currentExtent;
+  return {std::clamp(wanted.width, caps.minImageExtent.width, caps.maxImageExtent.width),
+          std::clamp(wanted.height, caps.minImageExtent.height, caps.maxImageExtent.height)};
+}
+
+Swapchain::Swapchain(const gpu::Context& ctx, const VkSurfaceCapabilitiesKHR& caps,
+                     VkExtent2D wanted, bool vsync, VkSwapchainKHR old) {
   VkSurfaceKHR surface = ctx.surface();
   VkPhysicalDevice gpu = ctx.physicalDevice();
   VkDevice device = ctx.device();
@@ -57,20 +65,12 @@ Swapchain::Swapchain(const gpu::Context& ctx, VkExtent2D wanted, VkSwapchainKHR 
   if (!supported)
     throw std::runtime_error("swapchain: the queue family cannot present to the window");
 
-  VkSurfaceCapabilitiesKHR caps;
-  QL_VK(vkGetPhysicalDeviceSurfaceCapabilitiesKHR(gpu, surface, &caps));
   const VkImageUsageFlags usage =
       VK_IMAGE_USAGE_TRANSFER_DST_BIT | VK_IMAGE_USAGE_COLOR_ATTACHMENT_BIT;
   if ((caps.supportedUsageFlags & usage) != usage)
     throw std::runtime_error("swapchain: surface images cannot be blit targets and attachments");
-  if (caps.currentExtent.width != UINT32_MAX) {
-    extent_ = caps.currentExtent;
-  } else {
-    extent_.width = std::clamp(wanted.width, caps.minImageExtent.width, caps.maxImageExtent.width);
-    extent_.height =
-        std::clamp(wanted.height, caps.minImageExtent.height, caps.maxImageExtent.height);
-  }
-  if (extent_.width == 0 || extent_.height == 0)
+  extent_ = extentFor(caps, wanted);
+  if (extent_.width == 0 || extent_.height == 0)  // the presenter waits instead
     throw std::runtime_error("swapchain: the window has no area (minimized)");
 
   VkSurfaceFormatKHR surfaceFormat = chooseFormat(gpu, surface);
@@ -96,7 +96,8 @@ Swapchain::Swapchain(const gpu::Context& ctx, VkExtent2D wanted, VkSwapchainKHR 
   info.imageSharingMode = VK_SHARING_MODE_EXCLUSIVE;
   info.preTransform = caps.currentTransform;
   info.compositeAlpha = alpha;
-  info.presentMode = choosePresentMode(gpu, surface);
+  presentMode_ = choosePresentMode(gpu, surface, vsync);
+  info.presentMode = presentMode_;
   info.clipped = VK_TRUE;
   info.oldSwapchain = old;
   VkSwapchainKHR swapchain = VK_NULL_HANDLE;

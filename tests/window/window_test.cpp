@@ -1,13 +1,17 @@
 // The windowed demo end to end: under a (virtual) X display, `qlight demo`
 // opens its window, renders and presents 30 frames with the validation layer
 // (synchronization validation on) and exits 0, leaving a non-black screenshot
-// at the render resolution (window size times the default render scale).
+// at the render resolution (window size times the default render scale). A scripted
+// run resizes the window, switches vsync and saves and loads settings files.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <array>
 #include <cstdio>
 #include <filesystem>
+#include <fstream>
 #include <functional>
+#include <nlohmann/json.hpp>
 #include <string>
 
 #define STB_IMAGE_STATIC
@@ -36,8 +40,9 @@ class WindowDemo : public ::testing::Test {
     if (!std::getenv("DISPLAY") && !XvfbServer::installed())
       GTEST_SKIP() << "no DISPLAY and Xvfb is not installed";
     std::string error;
-    // A display of its own per test: ctest runs the two at once, and a test that shared the
-    // other's server would lose it when the other ends.
+    // A display of its own per test: ctest runs two at once, and a test that shared the
+    // other's server would lose it when the other ends. The numbers come from the test names
+    // (143, 146 and 116 today): a new test needs a name whose number is not taken.
     const std::string name = ::testing::UnitTest::GetInstance()->current_test_info()->name();
     display_ = server_.start(97 + int(std::hash<std::string>{}(name) % 64), error);
     ASSERT_FALSE(display_.empty()) << error;
@@ -78,8 +83,8 @@ TEST_F(WindowDemo, PresentsFramesWithoutValidationMessagesAndWritesScreenshot) {
   unsigned char* pixels = stbi_load(shot.string().c_str(), &w, &h, &channels, 3);
   ASSERT_NE(pixels, nullptr) << stbi_failure_reason();
   game::DemoArgs defaults;
-  EXPECT_EQ(w, int(defaults.windowWidth * defaults.renderScale));
-  EXPECT_EQ(h, int(defaults.windowHeight * defaults.renderScale));
+  EXPECT_EQ(w, int(defaults.windowWidth * defaults.window.renderScale));
+  EXPECT_EQ(h, int(defaults.windowHeight * defaults.window.renderScale));
   double sum = 0;
   for (int i = 0; i < w * h * 3; ++i) sum += pixels[i];
   stbi_image_free(pixels);
@@ -106,11 +111,79 @@ TEST_F(WindowDemo, DynamicResolutionLowersWhileMovingAndRestoresWhenStill) {
   ASSERT_EQ(std::sscanf(run.output.c_str() + at, "render scale %f, lowest %f", &now, &lowest), 2)
       << run.output;
   game::DemoArgs defaults;
-  EXPECT_FLOAT_EQ(now, defaults.renderScale) << run.output;
-  EXPECT_LT(lowest, 0.8f * defaults.renderScale) << run.output;
+  EXPECT_FLOAT_EQ(now, defaults.window.renderScale) << run.output;
+  EXPECT_LT(lowest, 0.8f * defaults.window.renderScale) << run.output;
   int w = 0, h = 0, channels = 0;
   ASSERT_TRUE(stbi_info(shot.string().c_str(), &w, &h, &channels)) << run.output;
-  EXPECT_EQ(w, int(defaults.windowWidth * defaults.renderScale));
+  EXPECT_EQ(w, int(defaults.windowWidth * defaults.window.renderScale));
+}
+
+// A settings file at start, then scripted steps as a user would take them: a resize, vsync
+// on, "save settings", "load settings" of another file (its render scale applies) and of a
+// missing one (a message, not an exit). Each resize and the vsync switch rebuild the
+// swapchain without a validation message; the saved file replays in `qlight render`.
+TEST_F(WindowDemo, SettingsFileResizeAndVsyncRebuildSwapchainCleanly) {
+  const fs::path start = dir_ / "start.json", later = dir_ / "later.json",
+                 saved = dir_ / "saved.json", shot = dir_ / "shot.png";
+  std::ofstream(start) << R"({"render": {"exposure": 1.5, "max_depth": 4, "spp_per_frame": 2},
+                              "window": {"render_scale": 0.4, "target_frame_ms": 0}})";
+  std::ofstream(later) << R"({"render": {"exposure": 2}, "window": {"render_scale": 0.5}})";
+  DemoRun demo = runDemo("--settings " + start.string() +
+                         " --exit-after-frames 16 --script 3:resize=640x400 --script 6:vsync=on"
+                         " --script 9:save=" +
+                         saved.string() + " --script 10:load=" + later.string() +
+                         " --script 11:load=" + (dir_ / "missing.json").string() +
+                         " --screenshot-at-exit " + shot.string());
+  const RunResult& run = demo.run;
+  ASSERT_EQ(run.exitCode, 0) << demo.command << "\n" << run.output;
+  EXPECT_NE(run.output.find("16 frames in a 640x400 window"), std::string::npos) << run.output;
+  EXPECT_NE(run.output.find("vsync on (FIFO presentation)"), std::string::npos) << run.output;
+  unsigned swapchains = 0;
+  const size_t at = run.output.find("presentation), ");
+  ASSERT_NE(at, std::string::npos) << run.output;
+  ASSERT_EQ(std::sscanf(run.output.c_str() + at, "presentation), %u swapchains", &swapchains), 1);
+  EXPECT_GE(swapchains, 3u) << run.output;  // the first, the resize, vsync
+  EXPECT_NE(run.output.find("loaded settings from " + later.string()), std::string::npos)
+      << run.output;
+  EXPECT_NE(run.output.find("missing.json: cannot open the settings file"), std::string::npos)
+      << run.output;
+
+  // What the window had at frame 9: the start file's values, the new size, vsync on.
+  std::ifstream in(saved);
+  ASSERT_TRUE(in) << run.output;
+  nlohmann::json j = nlohmann::json::parse(in);
+  EXPECT_EQ(j["render"]["max_depth"], 4);
+  EXPECT_EQ(j["render"]["exposure"], 1.5);
+  EXPECT_EQ(j["window"]["render_scale"], 0.4);
+  EXPECT_EQ(j["window"]["vsync"], true);
+  EXPECT_EQ(j["render"]["width"], 256);  // 640 x 0.4: what a still camera accumulates at
+  EXPECT_EQ(j["render"]["height"], 160);
+
+  // The later file's scale over the resized window; a lit, varied image.
+  int w = 0, h = 0, channels = 0;
+  unsigned char* pixels = stbi_load(shot.string().c_str(), &w, &h, &channels, 3);
+  ASSERT_NE(pixels, nullptr) << stbi_failure_reason();
+  EXPECT_EQ(w, 320);
+  EXPECT_EQ(h, 200);
+  double sum = 0;
+  const auto [lo, hi] = std::minmax_element(pixels, pixels + w * h * 3);
+  for (int i = 0; i < w * h * 3; ++i) sum += pixels[i];
+  const int spread = int(*hi) - int(*lo);
+  stbi_image_free(pixels);
+  EXPECT_GT(sum / (double(w) * h * 3), 8.0) << "screenshot is (nearly) black";
+  EXPECT_GT(spread, 64) << "screenshot is (nearly) constant";
+
+  // The saved file replays offline at the window's size.
+  const fs::path stats = dir_ / "replay.json";
+  RunResult replay = runCommand(
+      std::string("QLIGHT_VALIDATION=1 ") + QLIGHT_BINARY + " render --scene " + QLIGHT_SOURCE_DIR +
+      "/assets/cornell_box.gltf --spp 1 --out " + (dir_ / "replay.png").string() + " --settings " +
+      saved.string() + " --stats-json " + stats.string());
+  ASSERT_EQ(replay.exitCode, 0) << replay.output;
+  EXPECT_EQ(replay.output.find("warning"), std::string::npos) << replay.output;
+  nlohmann::json replayed = nlohmann::json::parse(std::ifstream(stats));
+  EXPECT_EQ(replayed["width"], 256);
+  EXPECT_EQ(replayed["max_depth"], 4);
 }
 
 // Seeing the learning: the cache points overlay and the Q view of the point at the image's
