@@ -53,7 +53,8 @@ WindowApp::WindowApp(const DemoArgs& args, const CommonOptions& common)
                 float(args.windowWidth) / float(std::max(args.windowHeight, 1u))),
       display_(*ctx_),
       guidingWanted_(args.guiding),
-      input_(window_.handle()) {
+      input_(window_.handle()),
+      paths_(args, renderer_.world().camera().yfov) {
   clock_.duration = asset_.animationDuration();
   dynamic_.enabled = args.targetFrameMs > 0.0f;
   if (dynamic_.enabled) dynamic_.targetMs = args.targetFrameMs;
@@ -85,6 +86,7 @@ void WindowApp::resetCamera() {
   render::CameraView start = renderer_.world().camera();
   // Half the scene's radius per second crosses a room in a few seconds.
   camera_.reset(start, 0.5f * std::max(asset_.bounds.radius(), 1e-3f));
+  view_ = camera_.view();
 }
 
 void WindowApp::collectPreviousFrame(double seconds) {
@@ -102,14 +104,21 @@ void WindowApp::handleActions(const WindowActions& a) {
   if (a.togglePause) clock_.playing = !clock_.playing;
   if (a.resetCamera) resetCamera();
   if (a.screenshot) screenshotPending_ = true;
+  if (a.recordPath) paths_.toggleRecording();
 }
 
 bool WindowApp::moveCamera(FrameInput input, uint32_t frame, float step) {
-  if (frame < args_.scriptedMoveFrames) input.camera.forward = true;
-  const glm::vec3 position = camera_.position;
-  const float yaw = camera_.yaw, pitch = camera_.pitch;
-  camera_.update(input.camera, step);
-  return camera_.position != position || camera_.yaw != yaw || camera_.pitch != pitch;
+  const render::CameraView before = view_;
+  if (std::optional<render::CameraView> played = paths_.play(step)) {
+    view_ = *played;
+    camera_.reset(view_, camera_.speed);  // where the free camera starts when the path ends
+  } else {
+    if (frame < args_.scriptedMoveFrames) input.camera.forward = true;
+    camera_.update(input.camera, step);
+    view_ = camera_.view();
+  }
+  paths_.record(view_, step);
+  return view_ != before;
 }
 
 void WindowApp::applySettings(VkExtent2D extent, float scale) {
@@ -175,6 +184,7 @@ int WindowApp::run() {
                      tracer.settings().height,
                      ctx_->deviceName(),
                      ctx_->deviceName().find("llvmpipe") == std::string::npos};
+      view.cameraPath = paths_.status();
       PanelChanges changes =
           drawQlightPanel(view, wanted_, renderScale_, dynamic_, clock_, camera_, [&] {
             guiding::GuidingStats learned =
@@ -188,7 +198,7 @@ int WindowApp::run() {
     }
     applySettings(target->extent, dynamic_.scale);
     // Simulate, extract, upload: a moved light or object restarts or fades the image.
-    renderer_.update(clock_.time, camera_.view());
+    renderer_.update(clock_.time, view_);
     recordFrame(*target);
     presenter_.endFrame(*target);
     frameInFlight_ = true;
@@ -202,6 +212,7 @@ int WindowApp::run() {
     if (args_.exitAfterFrames && frames >= args_.exitAfterFrames) break;
   }
   vkDeviceWaitIdle(ctx_->device());
+  paths_.finish();
   double seconds = std::chrono::duration<double>(Clock::now() - start).count();
   std::printf("qlight demo: %u frames in a %ux%u window (render %ux%u) in %.2f s, %.1f ms/frame\n",
               frames, presenter_.swapchain().extent().width, presenter_.swapchain().extent().height,

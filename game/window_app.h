@@ -15,6 +15,7 @@
 #include "game/demo_window.h"
 #include "game/dynamic_resolution.h"
 #include "game/window_camera.h"
+#include "game/window_camera_path.h"
 #include "game/window_input.h"
 #include "game/window_scene.h"
 #include "game/window_stats.h"
@@ -38,7 +39,8 @@ class WindowApp {
   // The tracer follows the edited settings and the window size (restarting
   // accumulation when what it computes changes).
   void applySettings(VkExtent2D windowExtent, float scale);
-  // The camera after this frame's input (and the scripted move); true when it moved.
+  // The camera after this frame's input (or the scripted move, or the path playing); true
+  // when it moved.
   bool moveCamera(FrameInput input, uint32_t frame, float step);
   void recordFrame(const ui::PresentTarget& target);
   void resetCamera();
@@ -61,6 +63,8 @@ class WindowApp {
   guiding::GuidingSettings guidingWanted_;
   InputReader input_;
   FreeCamera camera_;
+  WindowCameraPath paths_;   // F9 recording, --camera-path playback
+  render::CameraView view_;  // what this frame renders: the free camera's or the path's
   SceneClock clock_;
   FrameStats stats_;
   bool uiVisible_ = true;
