@@ -92,30 +92,6 @@ TEST_F(WindowDemo, PresentsFramesWithoutValidationMessagesAndWritesScreenshot) {
   EXPECT_GT(mean, 8.0) << "screenshot is (nearly) black";
 }
 
-// A scripted flight of 12 frames with a target no lavapipe frame meets: the render scale
-// goes down while the camera moves and is back at the full scale once it has been still,
-// where the image accumulates (the screenshot has the full render size).
-TEST_F(WindowDemo, DynamicResolutionLowersWhileMovingAndRestoresWhenStill) {
-  fs::path shot = dir_ / "shot.png";
-  DemoRun demo = runDemo(
-      "--exit-after-frames 24 --scripted-move-frames 12 --target-frame-ms 20"
-      " --screenshot-at-exit " +
-      shot.string());
-  const RunResult& run = demo.run;
-  ASSERT_EQ(run.exitCode, 0) << demo.command << "\n" << run.output;
-  float now = 0, lowest = 0;
-  const size_t at = run.output.find("render scale ");
-  ASSERT_NE(at, std::string::npos) << run.output;
-  ASSERT_EQ(std::sscanf(run.output.c_str() + at, "render scale %f, lowest %f", &now, &lowest), 2)
-      << run.output;
-  game::DemoArgs defaults;
-  EXPECT_FLOAT_EQ(now, defaults.renderScale) << run.output;
-  EXPECT_LT(lowest, 0.8f * defaults.renderScale) << run.output;
-  int w = 0, h = 0, channels = 0;
-  ASSERT_TRUE(stbi_info(shot.string().c_str(), &w, &h, &channels)) << run.output;
-  EXPECT_EQ(w, int(defaults.windowWidth * defaults.renderScale));
-}
-
 // --camera-path plays in the window, then the free camera takes over where it ended: a short
 // path to the red wall (left) of the Cornell box, facing it. The screenshot is that wall, lit:
 // not black, not one flat color, and far redder than green (the box's own camera sees the
@@ -151,6 +127,30 @@ TEST_F(WindowDemo, PlaysACameraPathThenTheFreeCameraTakesOver) {
   EXPECT_GT(deviation, 4.0) << "screenshot is one flat color";
   EXPECT_GT(sum[0], 2.0 * sum[1]) << "not facing the red wall: red " << sum[0] / n << ", green "
                                   << sum[1] / n;
+}
+
+// A scripted flight of 12 frames with a target no lavapipe frame meets: the render scale
+// goes down while the camera moves and is back at the full scale once it has been still,
+// where the image accumulates (the screenshot has the full render size).
+TEST_F(WindowDemo, DynamicResolutionLowersWhileMovingAndRestoresWhenStill) {
+  fs::path shot = dir_ / "shot.png";
+  DemoRun demo = runDemo(
+      "--exit-after-frames 24 --scripted-move-frames 12 --target-frame-ms 20"
+      " --screenshot-at-exit " +
+      shot.string());
+  const RunResult& run = demo.run;
+  ASSERT_EQ(run.exitCode, 0) << demo.command << "\n" << run.output;
+  float now = 0, lowest = 0;
+  const size_t at = run.output.find("render scale ");
+  ASSERT_NE(at, std::string::npos) << run.output;
+  ASSERT_EQ(std::sscanf(run.output.c_str() + at, "render scale %f, lowest %f", &now, &lowest), 2)
+      << run.output;
+  game::DemoArgs defaults;
+  EXPECT_FLOAT_EQ(now, defaults.renderScale) << run.output;
+  EXPECT_LT(lowest, 0.8f * defaults.renderScale) << run.output;
+  int w = 0, h = 0, channels = 0;
+  ASSERT_TRUE(stbi_info(shot.string().c_str(), &w, &h, &channels)) << run.output;
+  EXPECT_EQ(w, int(defaults.windowWidth * defaults.renderScale));
 }
 
 }  // namespace
