@@ -13,9 +13,11 @@
 #include "engine/session/renderer.h"
 #include "engine/session/stats_json.h"
 #include "game/context_setup.h"
+#include "game/demo_timeline.h"
 #include "game/demo_window.h"
-#include "game/flythrough.h"
+#include "game/frame_video.h"
 #include "game/process_memory.h"
+#include "game/progress_bar.h"
 #include "game/shipped_scenes.h"
 
 namespace qlight::game {
@@ -29,21 +31,34 @@ bool displayAvailable() {
   return (d && *d) || (w && *w);
 }
 
+// The MP4 needs every frame; ffmpeg is optional, so without it this only says why not.
+void writeVideo(const DemoArgs& a, const DemoTimeline& timeline) {
+  if (!timeline.everyFrameWritten()) return;
+  const fs::path mp4 = fs::path(a.outDir) / "flythrough.mp4";
+  const VideoResult video = encodeFrames(a.outDir, timeline.frames(), a.fps, mp4);
+  if (video.written)
+    std::printf("qlight demo: %s (%u frames at %g fps)\n", mp4.c_str(), timeline.frames(), a.fps);
+  else
+    std::printf("qlight demo: MP4 skipped: %s\n", video.why.c_str());
+}
+
 int runHeadless(const DemoArgs& a, const CommonOptions& common) {
   scene::SceneAsset asset = gltf::loadGltf(resolveScene(a.scene));
   auto ctx = createContext(common, false);
   const render::RenderSettings& s = a.settings;
   session::Renderer renderer(*ctx, asset, s, a.guiding);
-  Flythrough path{renderer.world().camera(), asset.bounds.radius(), a.moveSeconds};
+  const DemoTimeline timeline(a, renderer.world().camera(), asset.bounds.radius());
+  const uint32_t frameCount = timeline.frames();
 
   fs::create_directories(a.outDir);
   nlohmann::json frames = nlohmann::json::array();
   session::RenderStats total = renderer.newStats();
+  ProgressBar progress(frameCount, "qlight demo");
   auto start = std::chrono::steady_clock::now();
-  for (uint32_t f = 0; f < a.frames; ++f) {
-    float t = float(f) / a.fps;
+  for (uint32_t f = 0; f < frameCount; ++f) {
+    float t = timeline.time(f);
     auto frameStart = std::chrono::steady_clock::now();
-    session::FrameResult r = renderer.renderFrame(t, path.at(t));
+    session::FrameResult r = renderer.renderFrame(t, timeline.camera(t));
     double frameSeconds =
         std::chrono::duration<double>(std::chrono::steady_clock::now() - frameStart).count();
     total.add(r);
@@ -59,19 +74,22 @@ int runHeadless(const DemoArgs& a, const CommonOptions& common) {
                       {"device_allocations", ctx->memoryInUse().allocations},
                       {"device_mib", double(ctx->memoryInUse().bytes) / (1024.0 * 1024.0)},
                       {"gpu_ms", r.gpuMs}});
-    bool last = f + 1 == a.frames;
-    if (last || (a.saveEvery > 0 && f % a.saveEvery == 0)) {
+    if (timeline.written(f)) {
       char name[64];
       std::snprintf(name, sizeof(name), "frame_%04u.png", f);
       image::writeImage(fs::path(a.outDir) / name, renderer.tracer().readImage(), s.exposure,
                         s.tonemap);
     }
+    progress.update(f + 1, "frame " + std::to_string(f + 1) + " of " + std::to_string(frameCount));
   }
+  progress.finish();
   total.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   if (renderer.guide()) total.guidingStats = renderer.guide()->stats();
   nlohmann::json stats = session::statsToJson(total);
   stats["scene"] = resolveScene(a.scene);
   stats["mode"] = "headless";
+  stats["camera"] = timeline.name();
+  if (!a.cameraPathFile.empty()) stats["camera_path"] = a.cameraPathFile;
   stats["frames_detail"] = frames;
   if (const guiding::QGuide* guide = renderer.guide(); guide && a.guiding.enabled) {
     const guiding::LearnedTables::ValueRange q = guide->qRange();
@@ -85,9 +103,10 @@ int runHeadless(const DemoArgs& a, const CommonOptions& common) {
   std::printf(
       "qlight demo: %u frames of %s at %ux%u in %.2f s (%.1f ms/frame, %.2f Mrays/s); "
       "images and stats.json in %s\n",
-      a.frames, a.scene.c_str(), s.width, s.height, total.seconds,
-      1e3 * total.seconds / std::max(1u, a.frames), stats["rays_per_second"].get<double>() * 1e-6,
+      frameCount, a.scene.c_str(), s.width, s.height, total.seconds,
+      1e3 * total.seconds / std::max(1u, frameCount), stats["rays_per_second"].get<double>() * 1e-6,
       a.outDir.c_str());
+  writeVideo(a, timeline);
   return finishContext(*ctx);
 }
 
@@ -97,16 +116,28 @@ std::function<int()> addDemoCommand(CLI::App& app, const CommonOptions& common) 
   auto args = std::make_shared<DemoArgs>();
   CLI::App* cmd = app.add_subcommand("demo", "the flythrough (window, or headless frames)");
   cmd->add_option("--scene", args->scene, "glTF file or shipped scene name")->capture_default_str();
-  cmd->add_option("--frames", args->frames, "headless: frames to render")
-      ->check(CLI::Range(1, 100000))
-      ->capture_default_str();
+  CLI::Option* frames = cmd->add_option("--frames", args->frames, "headless: frames to render")
+                            ->check(CLI::Range(1u, kMaxDemoFrames))
+                            ->capture_default_str();
   cmd->add_option("--fps", args->fps, "headless: frames per second of scene time")
       ->check(finiteRange(1.0, 1000.0));
-  cmd->add_option("--move-seconds", args->moveSeconds,
-                  "headless: seconds the camera moves before it stops")
-      ->check(finiteRange(0.0, 1e6));
-  cmd->add_option("--save-every", args->saveEvery,
-                  "headless: write every Nth frame (0: last only)");
+  CLI::Option* moveSeconds = cmd->add_option("--move-seconds", args->moveSeconds,
+                                             "headless: seconds the camera moves before it stops")
+                                 ->check(finiteRange(0.0, 1e6));
+  CLI::Option* saveEvery = cmd->add_option("--save-every", args->saveEvery,
+                                           "headless: write every Nth frame (0: last only)");
+  CLI::Option* camera =
+      cmd->add_option("--camera", args->camera,
+                      "headless: sway (around the scene's camera) or gltf (the scene's own, "
+                      "possibly animated camera)")
+          ->check(CLI::IsMember({"sway", "gltf"}))
+          ->capture_default_str();
+  cmd->add_option("--camera-path", args->cameraPathFile,
+                  "play this camera path (headless: all of it at --fps, every frame written; "
+                  "window: then the free camera takes over)")
+      ->excludes(frames, moveSeconds, camera, saveEvery);
+  cmd->add_option("--record-path", args->recordPath,
+                  "window: F9 records the camera into this file (default OUT/camera_path.json)");
   cmd->add_option("--out", args->outDir, "headless: output folder")->capture_default_str();
   cmd->add_option("--spp-per-frame", args->settings.samplesPerFrame, "samples per pixel per frame")
       ->check(wholeRange(ranges::kSamplesPerFrame));
@@ -160,6 +191,13 @@ std::function<int()> addDemoCommand(CLI::App& app, const CommonOptions& common) 
     args->window = file.window;
     finishGuidingOptions(args->guidingCli, args->guiding, args->settings);
     for (const std::string& step : *script) args->script.push_back(parseScriptStep(step));
+    // A bad path file is one error line before any device or window starts.
+    if (!args->cameraPathFile.empty()) {
+      args->cameraPath = loadCameraPath(args->cameraPathFile);
+      args->frames = framesAlong(args->cameraPath, args->fps, args->cameraPathFile);
+    }
+    if (args->recordPath.empty())
+      args->recordPath = (fs::path(args->outDir) / "camera_path.json").string();
     if (!args->headless && displayAvailable() && glfwInit()) {
       args->scene = resolveScene(args->scene);
       return runWindowed(*args, common);

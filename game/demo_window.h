@@ -5,11 +5,14 @@
 #include <vector>
 
 #include "engine/render/render_settings.h"
+#include "game/camera_path.h"
 #include "game/cli_options.h"
 #include "game/settings.h"
 #include "game/window_script.h"
 
 namespace qlight::game {
+
+constexpr uint32_t kMaxDemoFrames = 100000;  // headless frames in one run
 
 struct DemoArgs {
   std::string scene = "door_ajar_moving_light.gltf";
@@ -19,6 +22,10 @@ struct DemoArgs {
   uint32_t saveEvery = 20;
   std::string outDir = "out/demo";
   bool headless = false;
+  std::string camera = "sway";  // headless: the sway around the scene's camera, or "gltf": its own
+  std::string cameraPathFile;   // --camera-path: played instead (window: then the free camera)
+  CameraPath cameraPath;        // loaded from cameraPathFile before the device starts
+  std::string recordPath;       // window: F9 records here ("": outDir/camera_path.json)
   render::RenderSettings settings;
   guiding::GuidingSettings guiding;  // Q-learned guiding (on by default)
   GuidingCli guidingCli;

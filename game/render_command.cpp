@@ -8,6 +8,7 @@
 #include "engine/session/offline_render.h"
 #include "engine/session/stats_json.h"
 #include "game/context_setup.h"
+#include "game/progress_bar.h"
 
 namespace qlight::game {
 namespace {
@@ -31,7 +32,12 @@ int runRender(RenderArgs a, const CommonOptions& common) {
   auto ctx = createContext(common, /*windowed=*/false);
   render::RenderSettings s = a.settings;
   s.samplesPerFrame = std::min(s.samplesPerFrame, a.spp);
-  session::OfflineRender result = session::renderScene(*ctx, asset, s, a.spp, a.time, a.guiding);
+  ProgressBar progress(a.spp, "qlight render");
+  session::OfflineRender result =
+      session::renderScene(*ctx, asset, s, a.spp, a.time, a.guiding, [&](uint32_t done) {
+        progress.update(done, std::to_string(done) + " of " + std::to_string(a.spp) + " spp");
+      });
+  progress.finish();
   image::writeImage(a.out, result.image, s.exposure, s.tonemap);
   nlohmann::json stats = session::statsToJson(result.stats);
   stats["scene"] = a.scene;

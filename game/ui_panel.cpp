@@ -23,10 +23,11 @@ PanelChanges drawQlightPanel(const StatsView& stats, render::RenderSettings& set
       guidingSection();
     if (ImGui::CollapsingHeader("Scene", ImGuiTreeNodeFlags_DefaultOpen))
       changes.scenePose = drawSceneSection(clock);
-    if (ImGui::CollapsingHeader("Camera")) changes.resetCamera = drawCameraSection(camera);
+    if (ImGui::CollapsingHeader("Camera"))
+      changes.resetCamera = drawCameraSection(camera, stats.cameraPath);
     if (windowSection && ImGui::CollapsingHeader("Window", ImGuiTreeNodeFlags_DefaultOpen))
       windowSection();
-    ImGui::TextDisabled("WASD QE move, drag look, wheel speed, F1 UI, F12 shot");
+    ImGui::TextDisabled("WASD QE move, drag look, wheel speed, F1 UI, F9 path, F12 shot");
   }
   ImGui::End();
   return changes;
@@ -111,11 +112,12 @@ bool drawSceneSection(SceneClock& clock) {
   return moved;
 }
 
-bool drawCameraSection(FreeCamera& camera) {
+bool drawCameraSection(FreeCamera& camera, const std::string& pathStatus) {
   ImGui::SliderFloat("speed##camera", &camera.speed, 0.01f, 100.0f, "%.2f /s",
                      ImGuiSliderFlags_Logarithmic | ImGuiSliderFlags_AlwaysClamp);
   ImGui::Text("position %.2f %.2f %.2f", camera.position.x, camera.position.y, camera.position.z);
   ImGui::Text("yaw %.0f  pitch %.0f deg", camera.yaw * 57.2958f, camera.pitch * 57.2958f);
+  if (!pathStatus.empty()) ImGui::TextUnformatted(pathStatus.c_str());
   return ImGui::Button("reset (R)");
 }
 

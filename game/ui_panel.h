@@ -21,6 +21,7 @@ struct StatsView {
   // llvmpipe takes timestamps late once a render pass ran in the frame, so the
   // per-pass numbers of the windowed demo undercount there (headless ones are right).
   bool gpuTimesReliable = true;
+  std::string cameraPath;  // the Camera section's line on path recording or playback
 };
 
 struct PanelChanges {
@@ -40,7 +41,8 @@ PanelChanges drawQlightPanel(const StatsView& stats, render::RenderSettings& set
 void drawStatsSection(const StatsView& view);
 bool drawRenderSection(render::RenderSettings& settings, float& renderScale,
                        DynamicResolution& dynamic);
-bool drawSceneSection(SceneClock& clock);    // true: the pose changed
-bool drawCameraSection(FreeCamera& camera);  // true: reset requested
+bool drawSceneSection(SceneClock& clock);  // true: the pose changed
+// true: reset requested. `pathStatus`: the camera path's recording or playback.
+bool drawCameraSection(FreeCamera& camera, const std::string& pathStatus = {});
 
 }  // namespace qlight::game

@@ -69,6 +69,7 @@ WindowApp::WindowApp(const DemoArgs& args, const CommonOptions& common)
       filter_(*ctx_),
       guidingWanted_(args.guiding),
       input_(window_.handle()),
+      paths_(args, renderer_.world().camera().yfov),
       windowPanel_(args.settingsFile) {
   clock_.duration = asset_.animationDuration();
   dynamic_.enabled = args.window.targetFrameMs > 0.0f;
@@ -112,6 +113,7 @@ void WindowApp::resetCamera() {
   render::CameraView start = renderer_.world().camera();
   // Half the scene's radius per second crosses a room in a few seconds.
   camera_.reset(start, 0.5f * std::max(asset_.bounds.radius(), 1e-3f));
+  view_ = camera_.view();
 }
 
 void WindowApp::collectPreviousFrame(double seconds) {
@@ -129,14 +131,21 @@ void WindowApp::handleActions(const WindowActions& a) {
   if (a.togglePause) clock_.playing = !clock_.playing;
   if (a.resetCamera) resetCamera();
   if (a.screenshot) screenshotPending_ = true;
+  if (a.recordPath) paths_.toggleRecording();
 }
 
 bool WindowApp::moveCamera(FrameInput input, uint32_t frame, float step) {
-  if (frame < args_.scriptedMoveFrames) input.camera.forward = true;
-  const glm::vec3 position = camera_.position;
-  const float yaw = camera_.yaw, pitch = camera_.pitch;
-  camera_.update(input.camera, step);
-  return camera_.position != position || camera_.yaw != yaw || camera_.pitch != pitch;
+  const render::CameraView before = view_;
+  if (std::optional<render::CameraView> played = paths_.play(step)) {
+    view_ = *played;
+    camera_.reset(view_, camera_.speed);  // where the free camera starts when the path ends
+  } else {
+    if (frame < args_.scriptedMoveFrames) input.camera.forward = true;
+    camera_.update(input.camera, step);
+    view_ = camera_.view();
+  }
+  paths_.record(view_, step);
+  return view_ != before;
 }
 
 void WindowApp::applySettings(VkExtent2D extent, float scale) {
@@ -204,6 +213,7 @@ int WindowApp::run() {
                      ctx_->deviceName(),
                      ctx_->deviceName().find("llvmpipe") == std::string::npos};
       auto windowUi = [&] { drawWindowPanel(); };
+      view.cameraPath = paths_.status();
       PanelChanges changes =
           drawQlightPanel(view, wanted_, renderScale_, dynamic_, clock_, camera_, windowUi, [&] {
             guiding::GuidingStats learned =
@@ -221,15 +231,15 @@ int WindowApp::run() {
       ImGui::End();
       const ImGuiIO& io = ImGui::GetIO();
       if (args_.inspectAt.size() == 2)  // scripted runs and screenshots
-        guideViews_.draw(renderer_, camera_.view(), io.DisplaySize,
+        guideViews_.draw(renderer_, view_, io.DisplaySize,
                          ImVec2(args_.inspectAt[0], args_.inspectAt[1]), true);
       else
-        guideViews_.draw(renderer_, camera_.view(), io.DisplaySize, io.MousePos,
+        guideViews_.draw(renderer_, view_, io.DisplaySize, io.MousePos,
                          !imgui_.wantsMouse());
     }
     applySettings(target->extent, dynamic_.scale);
     // Simulate, extract, upload: a moved light or object restarts or fades the image.
-    renderer_.update(clock_.time, camera_.view());
+    renderer_.update(clock_.time, view_);
     recordFrame(*target);
     presenter_.endFrame(*target);
     frameInFlight_ = true;
@@ -243,6 +253,7 @@ int WindowApp::run() {
     if (args_.exitAfterFrames && frames >= args_.exitAfterFrames) break;
   }
   vkDeviceWaitIdle(ctx_->device());
+  paths_.finish();
   double seconds = std::chrono::duration<double>(Clock::now() - start).count();
   std::printf("qlight demo: %u frames in a %ux%u window (render %ux%u) in %.2f s, %.1f ms/frame\n",
               frames, presenter_.swapchain().extent().width, presenter_.swapchain().extent().height,

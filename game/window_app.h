@@ -19,6 +19,7 @@
 #include "game/settings.h"
 #include "game/ui_window_panel.h"
 #include "game/window_camera.h"
+#include "game/window_camera_path.h"
 #include "game/window_input.h"
 #include "game/window_scene.h"
 #include "game/window_stats.h"
@@ -42,7 +43,8 @@ class WindowApp {
   // The tracer follows the edited settings and the window size (restarting
   // accumulation when what it computes changes).
   void applySettings(VkExtent2D windowExtent, float scale);
-  // The camera after this frame's input (and the scripted move); true when it moved.
+  // The camera after this frame's input (or the scripted move, or the path playing); true
+  // when it moved.
   bool moveCamera(FrameInput input, uint32_t frame, float step);
   void recordFrame(const ui::PresentTarget& target);
   void resetCamera();
@@ -78,6 +80,8 @@ class WindowApp {
   GuideViews guideViews_;  // cache points over the image, Q under the cursor
   InputReader input_;
   FreeCamera camera_;
+  WindowCameraPath paths_;   // F9 recording, --camera-path playback
+  render::CameraView view_;  // what this frame renders: the free camera's or the path's
   SceneClock clock_;
   FrameStats stats_;
   WindowPanel windowPanel_;

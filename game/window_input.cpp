@@ -30,6 +30,7 @@ FrameInput InputReader::read(bool uiWantsMouse, bool uiWantsKeyboard, float whee
   a.togglePause = pressedOnce(GLFW_KEY_SPACE, keys);
   a.toggleUi = pressedOnce(GLFW_KEY_F1, keys);
   a.screenshot = pressedOnce(GLFW_KEY_F12, keys);
+  a.recordPath = pressedOnce(GLFW_KEY_F9, keys);
   a.quit = pressedOnce(GLFW_KEY_ESCAPE, keys);
 
   double x = 0, y = 0;

@@ -13,6 +13,7 @@ struct WindowActions {
   bool togglePause = false;  // Space
   bool toggleUi = false;     // F1
   bool screenshot = false;   // F12
+  bool recordPath = false;   // F9: start / stop recording the camera path
   bool quit = false;         // Esc
 };
 

@@ -15,7 +15,8 @@ guiding::GuidingSettings disabledGuiding() {
 
 OfflineRender renderScene(const gpu::Context& ctx, const scene::SceneAsset& asset,
                           const render::RenderSettings& settings, uint32_t spp, float timeSeconds,
-                          const guiding::GuidingSettings& guidingSettings) {
+                          const guiding::GuidingSettings& guidingSettings,
+                          const std::function<void(uint32_t sppDone)>& progress) {
   using Clock = std::chrono::steady_clock;
   Renderer renderer(ctx, asset, settings, guidingSettings);
   OfflineRender out;
@@ -24,6 +25,7 @@ OfflineRender renderScene(const gpu::Context& ctx, const scene::SceneAsset& asse
   while (out.stats.spp < spp) {
     renderer.tracer().setSamplesPerFrame(std::min(settings.samplesPerFrame, spp - out.stats.spp));
     out.stats.add(renderer.renderFrame(timeSeconds));
+    if (progress) progress(out.stats.spp);
   }
   out.stats.seconds = std::chrono::duration<double>(Clock::now() - start).count();
   if (renderer.guide()) out.stats.guidingStats = renderer.guide()->stats();

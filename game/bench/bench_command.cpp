@@ -170,7 +170,7 @@ int runBench(BenchArgs a, const CommonOptions& common) {
 
   // Progress in units of work: a reference counts 1 (0 when cached), methods their budget.
   const double perScene = 1.0 + *a.budgetSeconds * double(methods.size());
-  ProgressBar progress(perScene * double(scenes.size()));
+  ProgressBar progress(perScene * double(scenes.size()), "qlight bench");
   nlohmann::json sceneEntries = nlohmann::json::array();
   for (size_t i = 0; i < scenes.size(); ++i) {
     const std::string name = fs::path(scenes[i]).stem().string();

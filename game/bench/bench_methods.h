@@ -13,7 +13,7 @@
 #include "engine/render/render_settings.h"
 #include "engine/scene/scene_asset.h"
 #include "game/bench/bench_metrics.h"
-#include "game/bench/progress_bar.h"
+#include "game/progress_bar.h"
 
 namespace qlight::game::bench {
 

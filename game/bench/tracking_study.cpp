@@ -10,7 +10,7 @@
 #include "engine/session/stats_json.h"
 #include "game/bench/bench_metrics.h"
 #include "game/bench/bench_reference.h"
-#include "game/bench/progress_bar.h"
+#include "game/progress_bar.h"
 #include "game/shipped_scenes.h"
 
 namespace qlight::game::bench {
@@ -123,7 +123,7 @@ nlohmann::json runTrackingStudy(const gpu::Context& ctx, const TrackingStudySett
     total += referenceWeight * double(lightTimes[c].size()) +
              double(methods.size() * settings.seeds * frames);
   }
-  ProgressBar progress(total);
+  ProgressBar progress(total, "qlight bench");
   double done = 0;
 
   nlohmann::json cases = nlohmann::json::array();

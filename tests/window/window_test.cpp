@@ -7,6 +7,7 @@
 
 #include <algorithm>
 #include <array>
+#include <cmath>
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
@@ -92,6 +93,43 @@ TEST_F(WindowDemo, PresentsFramesWithoutValidationMessagesAndWritesScreenshot) {
   // A black frame (nothing traced, nothing accumulated) has mean 0; the lit
   // Cornell box averages far above 8/255.
   EXPECT_GT(mean, 8.0) << "screenshot is (nearly) black";
+}
+
+// --camera-path plays in the window, then the free camera takes over where it ended: a short
+// path to the red wall (left) of the Cornell box, facing it. The screenshot is that wall, lit:
+// not black, not one flat color, and far redder than green (the box's own camera sees the
+// red and the green wall alike).
+TEST_F(WindowDemo, PlaysACameraPathThenTheFreeCameraTakesOver) {
+  const fs::path path = dir_ / "path.json";
+  std::ofstream(path) << R"({"keys": [
+    {"time": 0, "position": [0.3, 1, 0.3], "forward": [-1, 0, 0], "up": [0, 1, 0]},
+    {"time": 0.05, "position": [0.2, 1, 0.3], "forward": [-1, 0, 0], "up": [0, 1, 0]}]})";
+  fs::path shot = dir_ / "shot.png";
+  DemoRun demo = runDemo("--camera-path " + path.string() +
+                         " --exit-after-frames 8 --screenshot-at-exit " + shot.string());
+  const RunResult& run = demo.run;
+  ASSERT_EQ(run.exitCode, 0) << demo.command << "\n" << run.output;
+  EXPECT_NE(run.output.find("playing camera path " + path.string()), std::string::npos)
+      << run.output;
+  EXPECT_NE(run.output.find("the free camera takes over"), std::string::npos) << run.output;
+
+  int w = 0, h = 0, channels = 0;
+  unsigned char* pixels = stbi_load(shot.string().c_str(), &w, &h, &channels, 3);
+  ASSERT_NE(pixels, nullptr) << stbi_failure_reason();
+  double sum[3] = {0, 0, 0}, squares = 0;
+  for (int i = 0; i < w * h; ++i)
+    for (int c = 0; c < 3; ++c) {
+      sum[c] += pixels[i * 3 + c];
+      squares += double(pixels[i * 3 + c]) * pixels[i * 3 + c];
+    }
+  stbi_image_free(pixels);
+  const double n = double(w) * h;
+  const double mean = (sum[0] + sum[1] + sum[2]) / (3 * n);
+  const double deviation = std::sqrt(std::max(squares / (3 * n) - mean * mean, 0.0));
+  EXPECT_GT(mean, 8.0) << "screenshot is (nearly) black";
+  EXPECT_GT(deviation, 4.0) << "screenshot is one flat color";
+  EXPECT_GT(sum[0], 2.0 * sum[1]) << "not facing the red wall: red " << sum[0] / n << ", green "
+                                  << sum[1] / n;
 }
 
 // A scripted flight of 12 frames with a target no lavapipe frame meets: the render scale
