@@ -67,6 +67,7 @@ WindowApp::WindowApp(const DemoArgs& args, const CommonOptions& common)
                 float(args.windowWidth) / float(std::max(args.windowHeight, 1u))),
       display_(*ctx_),
       filter_(*ctx_),
+      capture_(*ctx_),
       guidingWanted_(args.guiding),
       input_(window_.handle()),
       paths_(args, renderer_.world().camera().yfov),
@@ -173,6 +174,8 @@ void WindowApp::recordFrame(const ui::PresentTarget& target) {
   timer.begin(cmd, "imgui");
   imgui_.render(target, presenter_.overlayRenderPass());
   timer.end(cmd);
+  if (!capturePath_.empty() && presenter_.swapchain().copyable())
+    capture_.record(cmd, target.image, target.extent, presenter_.swapchain().format());
 }
 
 int WindowApp::run() {
@@ -234,8 +237,7 @@ int WindowApp::run() {
         guideViews_.draw(renderer_, view_, io.DisplaySize,
                          ImVec2(args_.inspectAt[0], args_.inspectAt[1]), true);
       else
-        guideViews_.draw(renderer_, view_, io.DisplaySize, io.MousePos,
-                         !imgui_.wantsMouse());
+        guideViews_.draw(renderer_, view_, io.DisplaySize, io.MousePos, !imgui_.wantsMouse());
     }
     applySettings(target->extent, dynamic_.scale);
     // Simulate, extract, upload: a moved light or object restarts or fades the image.
@@ -244,6 +246,14 @@ int WindowApp::run() {
     presenter_.endFrame(*target);
     frameInFlight_ = true;
     ++frames;
+    if (!capturePath_.empty()) {  // scripted only: waiting for the frame costs nothing there
+      vkDeviceWaitIdle(ctx_->device());
+      if (capture_.write(capturePath_))
+        std::printf("qlight demo: window captured to %s\n", capturePath_.c_str());
+      else
+        std::printf("qlight demo: window not captured: the surface's images cannot be copied\n");
+      capturePath_.clear();
+    }
 
     if (screenshotPending_) {
       writeScreenshot(renderer_.tracer(), nextScreenshotPath(args_.outDir), wanted_.exposure,

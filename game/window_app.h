@@ -13,10 +13,11 @@
 #include "engine/ui/glfw_window.h"
 #include "engine/ui/imgui_layer.h"
 #include "engine/ui/presenter.h"
+#include "engine/ui/window_capture.h"
 #include "game/demo_window.h"
 #include "game/dynamic_resolution.h"
-#include "game/ui_guide_views.h"
 #include "game/settings.h"
+#include "game/ui_guide_views.h"
 #include "game/ui_window_panel.h"
 #include "game/window_camera.h"
 #include "game/window_camera_path.h"
@@ -76,6 +77,8 @@ class WindowApp {
   ui::DisplayPass display_;
   ui::DisplayFilter filter_;  // temporal reuse and the denoiser, display only
   ui::DisplayFilterSettings filterSettings_;
+  ui::WindowCapture capture_;  // --script FRAME:capture=FILE: the window with its panel
+  std::string capturePath_;    // set for the frame being recorded
   guiding::GuidingSettings guidingWanted_;
   GuideViews guideViews_;  // cache points over the image, Q under the cursor
   InputReader input_;

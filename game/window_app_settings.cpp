@@ -92,6 +92,18 @@ void WindowApp::runScript(uint32_t frame) {
       case ScriptStep::Action::Save:
         saveSettings(step.path);
         break;
+      case ScriptStep::Action::Points:
+        guideViews_.settings.pointsOverlay = step.on;
+        break;
+      case ScriptStep::Action::Denoise:
+        filterSettings_.denoise = step.on;
+        break;
+      case ScriptStep::Action::Panel:
+        uiVisible_ = step.on;
+        break;
+      case ScriptStep::Action::Capture:
+        capturePath_ = step.path;  // after this frame's panel is drawn
+        break;
     }
   }
 }

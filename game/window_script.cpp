@@ -38,17 +38,23 @@ ScriptStep parseScriptStep(const std::string& text) {
     if (x == std::string::npos || !size(std::string_view(value).substr(0, x), step.width) ||
         !size(std::string_view(value).substr(x + 1), step.height))
       throw bad("resize takes WxH, e.g. 640x360");
-  } else if (action == "vsync") {
-    step.action = ScriptStep::Action::Vsync;
+  } else if (action == "vsync" || action == "points" || action == "denoise" || action == "panel") {
+    step.action = action == "vsync"     ? ScriptStep::Action::Vsync
+                  : action == "points"  ? ScriptStep::Action::Points
+                  : action == "denoise" ? ScriptStep::Action::Denoise
+                                        : ScriptStep::Action::Panel;
     auto it = onOffWords().find(value);
-    if (it == onOffWords().end()) throw bad("vsync takes on or off");
+    if (it == onOffWords().end()) throw bad(action + " takes on or off");
     step.on = it->second;
-  } else if (action == "load" || action == "save") {
-    step.action = action == "load" ? ScriptStep::Action::Load : ScriptStep::Action::Save;
+  } else if (action == "load" || action == "save" || action == "capture") {
+    step.action = action == "load"   ? ScriptStep::Action::Load
+                  : action == "save" ? ScriptStep::Action::Save
+                                     : ScriptStep::Action::Capture;
     if (value.empty()) throw bad(action + " takes a file");
     step.path = value;
   } else {
-    throw bad("unknown action \"" + action + "\" (resize, vsync, load or save)");
+    throw bad("unknown action \"" + action +
+              "\" (resize, vsync, load, save, points, denoise, panel or capture)");
   }
   return step;
 }

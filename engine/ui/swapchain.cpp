@@ -69,6 +69,8 @@ Swapchain::Swapchain(const gpu::Context& ctx, const VkSurfaceCapabilitiesKHR& ca
       VK_IMAGE_USAGE_TRANSFER_DST_BIT | VK_IMAGE_USAGE_COLOR_ATTACHMENT_BIT;
   if ((caps.supportedUsageFlags & usage) != usage)
     throw std::runtime_error("swapchain: surface images cannot be blit targets and attachments");
+  // Copies out for window captures (ui/window_capture.h), where the surface allows them.
+  const VkImageUsageFlags capture = caps.supportedUsageFlags & VK_IMAGE_USAGE_TRANSFER_SRC_BIT;
   extent_ = extentFor(caps, wanted);
   if (extent_.width == 0 || extent_.height == 0)  // the presenter waits instead
     throw std::runtime_error("swapchain: the window has no area (minimized)");
@@ -92,7 +94,8 @@ Swapchain::Swapchain(const gpu::Context& ctx, const VkSurfaceCapabilitiesKHR& ca
   info.imageColorSpace = surfaceFormat.colorSpace;
   info.imageExtent = extent_;
   info.imageArrayLayers = 1;
-  info.imageUsage = usage;
+  info.imageUsage = usage | capture;
+  copyable_ = capture != 0;
   info.imageSharingMode = VK_SHARING_MODE_EXCLUSIVE;
   info.preTransform = caps.currentTransform;
   info.compositeAlpha = alpha;

@@ -26,6 +26,8 @@ class Swapchain {
 
   VkSwapchainKHR handle() const { return swapchain_; }
   VkFormat format() const { return format_; }
+  // The images can be copied out (window captures).
+  bool copyable() const { return copyable_; }
   // The swapchain's format stores sRGB-encoded values when written linear ones.
   bool encodesSrgb() const;
   VkExtent2D extent() const { return extent_; }
@@ -40,6 +42,7 @@ class Swapchain {
   std::vector<VkImage> images_;  // owned by the swapchain
   std::vector<gpu::Unique<VkImageView>> views_;
   VkFormat format_ = VK_FORMAT_UNDEFINED;
+  bool copyable_ = false;
   VkExtent2D extent_{};
   VkPresentModeKHR presentMode_ = VK_PRESENT_MODE_FIFO_KHR;
   uint32_t minImageCount_ = 2;

@@ -22,12 +22,20 @@ TEST(WindowScript, ParsesEachAction) {
   EXPECT_EQ(load.action, ScriptStep::Action::Load);
   EXPECT_EQ(load.path, "/tmp/a:b=c.json");
   EXPECT_EQ(parseScriptStep("6:save=s.json").action, ScriptStep::Action::Save);
+  EXPECT_TRUE(parseScriptStep("7:points=on").on);
+  EXPECT_EQ(parseScriptStep("7:points=on").action, ScriptStep::Action::Points);
+  EXPECT_FALSE(parseScriptStep("8:denoise=off").on);
+  EXPECT_EQ(parseScriptStep("8:denoise=off").action, ScriptStep::Action::Denoise);
+  EXPECT_EQ(parseScriptStep("9:panel=off").action, ScriptStep::Action::Panel);
+  ScriptStep capture = parseScriptStep("9:capture=/tmp/w.png");
+  EXPECT_EQ(capture.action, ScriptStep::Action::Capture);
+  EXPECT_EQ(capture.path, "/tmp/w.png");
 }
 
 TEST(WindowScript, RefusesMalformedSteps) {
-  for (const char* bad :
-       {"", "resize=640x360", "x:resize=640x360", "-1:vsync=on", "3:vsync", "3:vsync=maybe",
-        "3:resize=640", "3:resize=0x10", "3:resize=64x10x", "3:load=", "3:jump=1"}) {
+  for (const char* bad : {"", "resize=640x360", "x:resize=640x360", "-1:vsync=on", "3:vsync",
+                          "3:vsync=maybe", "3:resize=640", "3:resize=0x10", "3:resize=64x10x",
+                          "3:load=", "3:jump=1", "4:points=yes", "4:denoise", "4:capture="}) {
     try {
       parseScriptStep(bad);
       ADD_FAILURE() << bad << " parsed";

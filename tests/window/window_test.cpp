@@ -254,5 +254,61 @@ TEST_F(WindowDemo, DisplayFilterRunsWhileMovingAndStill) {
   EXPECT_NE(demo.run.output.find("10 frames in a"), std::string::npos) << demo.run.output;
 }
 
+// Mean absolute difference of two RGB images over the rectangle [x0, x1) x [y0, y1).
+double meanDifference(const unsigned char* a, const unsigned char* b, int width, int x0, int y0,
+                      int x1, int y1) {
+  double sum = 0;
+  for (int y = y0; y < y1; ++y)
+    for (int x = x0; x < x1; ++x)
+      for (int c = 0; c < 3; ++c)
+        sum += std::abs(int(a[(y * width + x) * 3 + c]) - int(b[(y * width + x) * 3 + c]));
+  return sum / (3.0 * (x1 - x0) * (y1 - y0));
+}
+
+// Everything a session does at once, as issue 12 asks: a settings file loaded, a camera path
+// played, the cache points overlay and the denoiser switched on, the window resized, and the
+// window captured with its panel (and once without: where the panel is, the two captures
+// differ far more than where nothing is drawn over the image); the validation layer silent.
+TEST_F(WindowDemo, ScriptedSessionLoadsPlaysTogglesResizesAndCapturesThePanel) {
+  const fs::path settings = dir_ / "settings.json", path = dir_ / "path.json";
+  std::ofstream(settings) << R"({"render": {"max_depth": 4, "exposure": 1.2}})";
+  std::ofstream(path) << R"({"keys": [
+    {"time": 0, "position": [0, 1, 3.2], "forward": [0, 0, -1], "up": [0, 1, 0]},
+    {"time": 0.1, "position": [0, 1, 3.0], "forward": [0, 0, -1], "up": [0, 1, 0]}]})";
+  const fs::path withPanel = dir_ / "with_panel.png", withoutPanel = dir_ / "without_panel.png";
+  DemoRun demo = runDemo("--settings " + settings.string() + " --camera-path " + path.string() +
+                         " --script 1:points=on --script 2:denoise=on --script 3:resize=800x450"
+                         " --script 9:capture=" +
+                         withPanel.string() + " --script 10:panel=off --script 10:capture=" +
+                         withoutPanel.string() + " --exit-after-frames 11");
+  const RunResult& run = demo.run;
+  ASSERT_EQ(run.exitCode, 0) << demo.command << "\n" << run.output;
+  EXPECT_NE(run.output.find("playing camera path"), std::string::npos) << run.output;
+  EXPECT_NE(run.output.find("cache points drawn"), std::string::npos) << run.output;
+  EXPECT_NE(run.output.find("in a 800x450 window"), std::string::npos) << run.output;
+  int w = 0, h = 0, w2 = 0, h2 = 0, channels = 0;
+  unsigned char* a = stbi_load(withPanel.string().c_str(), &w, &h, &channels, 3);
+  unsigned char* b = stbi_load(withoutPanel.string().c_str(), &w2, &h2, &channels, 3);
+  ASSERT_NE(a, nullptr) << run.output;
+  ASSERT_NE(b, nullptr) << run.output;
+  EXPECT_EQ(w, 800);
+  EXPECT_EQ(h, 450);
+  ASSERT_EQ(w2, w);
+  ASSERT_EQ(h2, h);
+  double sum = 0, squares = 0;
+  for (int i = 0; i < w * h * 3; ++i) sum += a[i], squares += double(a[i]) * a[i];
+  const double mean = sum / (3.0 * w * h);
+  EXPECT_GT(mean, 8.0) << "the capture is (nearly) black";
+  EXPECT_GT(std::sqrt(std::max(squares / (3.0 * w * h) - mean * mean, 0.0)), 4.0)
+      << "the capture is one flat colour";
+  // The panel stands at the top left (330 pixels wide); the bottom right has nothing over
+  // the image but the cache points.
+  const double panel = meanDifference(a, b, w, 12, 40, 320, 300);
+  const double image = meanDifference(a, b, w, 560, 380, 790, 440);
+  EXPECT_GT(panel, 3.0 * image + 5.0) << "panel region " << panel << ", image region " << image;
+  stbi_image_free(a);
+  stbi_image_free(b);
+}
+
 }  // namespace
 }  // namespace qlight::test
