@@ -62,6 +62,9 @@ void addGuidingOptions(CLI::App& app, guiding::GuidingSettings& g, GuidingCli& c
   app.add_option("--half-life", g.halfLifeFrames,
                  "tracking: frames after which what was learned counts half (0: never forget)")
       ->check(finiteRange(ranges::kHalfLife));
+  app.add_option("--forget-on-light-move", g.forgetOnLightMove,
+                 "tracking: halvings of what was learned per scene radius a light moves (0: off)")
+      ->check(finiteRange(ranges::kForgetOnLightMove));
   app.add_option("--points", g.pointBudget,
                  "cache point budget (default 0: one point per 8 paths per frame, 256..16384)");
   app.add_option("--select-probability", g.selectProbability,

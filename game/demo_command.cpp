@@ -179,6 +179,7 @@ std::function<int()> addDemoCommand(CLI::App& app, const CommonOptions& common) 
   args->settings.temporalBlend = 0.7f;  // the demo keeps a fading history of animated frames
   // The demo's lights move: what was learned fades (the tracking study: docs/tracking.md).
   args->guiding.halfLifeFrames = kDemoHalfLifeFrames;
+  args->guiding.forgetOnLightMove = kDemoForgetOnLightMove;
   addRenderOptions(*cmd, args->settings);
   addGuidingOptions(*cmd, args->guiding, args->guidingCli);
   addSettingsOption(*cmd, args->settingsFile);

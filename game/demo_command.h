@@ -9,9 +9,11 @@
 
 namespace qlight::game {
 
-// The demo's tracking: learned values and confidence halve in this many frames without
-// new data (measured by `qlight bench --tracking`, docs/tracking.md).
-constexpr float kDemoHalfLifeFrames = 8.0f;
+// The demo's tracking (measured by `qlight bench --tracking`, README "Tracking moving
+// lights"): what each point learned halves this many times per scene radius a light moves,
+// and in this many frames without new data (0: not by time).
+constexpr float kDemoForgetOnLightMove = 4.0f;
+constexpr float kDemoHalfLifeFrames = 0.0f;
 
 std::function<int()> addDemoCommand(CLI::App& app, const CommonOptions& common);
 

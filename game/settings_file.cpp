@@ -181,6 +181,8 @@ const std::vector<Field>& fields() {
       number(kGuiding, "alpha_min", "--alpha-min", &G::alphaMin, kAnyReal),
       number(kGuiding, "alpha_max", "--alpha-max", &G::alphaMax, kAnyReal),
       number(kGuiding, "half_life", "--half-life", &G::halfLifeFrames, kHalfLife),
+      number(kGuiding, "forget_on_light_move", "--forget-on-light-move", &G::forgetOnLightMove,
+             kForgetOnLightMove),
       number(kGuiding, "select_probability", "--select-probability", &G::selectProbability,
              kAnyReal),
       number(kGuiding, "confidence_updates", "--confidence-updates", &G::confidenceUpdates,

@@ -34,12 +34,15 @@ GuidingPanelResult drawGuidingSection(guiding::GuidingSettings& s,
   s.alphaMax = std::max(s.alphaMax, s.alphaMin);
   ImGui::SliderFloat("half-life (frames)", &s.halfLifeFrames, 0.0f, 200.0f,
                      s.halfLifeFrames > 0 ? "%.0f" : "never forget", kClamp);
+  ImGui::SliderFloat("forget on light move", &s.forgetOnLightMove, 0.0f, 20.0f,
+                     s.forgetOnLightMove > 0 ? "%.1f halvings/radius" : "off", kClamp);
   ImGui::SliderFloat("guided share", &s.selectProbability, 0.0f, 0.95f, "%.2f", kClamp);
   ImGui::Checkbox("learned light selection", &s.lightLearning);
   ImGui::SliderFloat("light mix", &s.lightMix, 0.0f, 0.95f, "%.2f", kClamp);
   r.changed = s.enabled != before.enabled || s.learn != before.learn || s.target != before.target ||
               s.rows != before.rows || s.cols != before.cols || s.alphaMin != before.alphaMin ||
               s.alphaMax != before.alphaMax || s.halfLifeFrames != before.halfLifeFrames ||
+              s.forgetOnLightMove != before.forgetOnLightMove ||
               s.selectProbability != before.selectProbability ||
               s.lightLearning != before.lightLearning || s.lightMix != before.lightMix;
   r.regenerate = ImGui::Button("regenerate points");

@@ -20,7 +20,7 @@ layout(binding = QL_Q_UPDATE_BIND_SUMS, scalar) buffer Sums { uint sums[]; };  /
 layout(binding = QL_Q_UPDATE_BIND_COUNTS, scalar) buffer Counts { uint counts[]; };
 // Updates per point (Q table only).
 layout(binding = QL_Q_UPDATE_BIND_POINT_UPDATES, scalar) buffer PointUpdates { uint pointUpdates[]; };
-layout(binding = QL_Q_UPDATE_BIND_ROW_PASSES, scalar) buffer RowPasses { uint rowPasses[]; };
+layout(binding = QL_Q_UPDATE_BIND_ROW_CLOCKS, scalar) buffer RowClocks { float rowClocks[]; };
 layout(push_constant, scalar) uniform Push { TableUpdatePush pc; };
 
 // Sampling weights shrink Q toward the row mean by kShrink pseudo-visits: a stratum
@@ -37,12 +37,12 @@ void main() {
   uint targets = 0u;
   for (uint k = 0u; k < length; ++k) targets += counts[base + k];
   if (targets == 0u && pc.everyRow == 0u) return;
-  // Tracking: the row's counts age by the passes since it was last updated (a row without
-  // targets is not touched, so it ages when it is next used).
-  uint age = pc.pass - rowPasses[row];
-  rowPasses[row] = pc.pass;
+  // Tracking: the row's counts age by the forgetting clock's advance since it was last updated
+  // (a row without targets is not touched, so it ages when it is next used).
+  float age = pc.clock - rowClocks[row];
+  rowClocks[row] = pc.clock;
   if (pc.cosineWeights != 0u)
-    pointUpdates[row] = agedCount(pointUpdates[row], age, pc.forgetPerPass) + targets;
+    pointUpdates[row] = agedCount(pointUpdates[row], age) + targets;
 
   // The update; then the sampling weights: a stratum's Q shrunk toward the mean of the
   // row's visited strata (never visited: the mean itself), so an unexplored direction is as
@@ -53,7 +53,7 @@ void main() {
   for (uint k = 0u; k < length; ++k) {
     uint e = base + k;
     uint m = counts[e];
-    uint n = agedCount(visits[e], age, pc.forgetPerPass);
+    uint n = agedCount(visits[e], age);
     float q = values[e];
     if (m == 0u && n != visits[e]) visits[e] = n;
     if (m > 0u) {

@@ -19,6 +19,8 @@ void validate(const GuidingSettings& s) {
         "learning rate bounds must satisfy 0 < alpha-min <= alpha-max <= 1");
   if (!finite(s.halfLifeFrames) || s.halfLifeFrames < 0 || s.halfLifeFrames > 1e6f)
     throw std::invalid_argument("half-life must be 0 (never forget) to 1e6 frames");
+  if (!finite(s.forgetOnLightMove) || s.forgetOnLightMove < 0 || s.forgetOnLightMove > 1e3f)
+    throw std::invalid_argument("forgetting on light moves must be 0 (off) to 1000 halvings");
   if (!finite(s.selectProbability) || s.selectProbability < 0 || s.selectProbability > 0.95f)
     throw std::invalid_argument(
         "guided selection probability must be in [0, 0.95] (BSDF sampling keeps the rest)");

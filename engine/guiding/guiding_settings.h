@@ -30,6 +30,9 @@ struct GuidingSettings {
   // without more data and Q follows a light that moves. 0 remembers everything (the
   // right choice where nothing moves: the offline render and the bench).
   float halfLifeFrames = 0.0f;
+  // Tracking by how far lights move: what was learned halves this many times per scene radius
+  // a light moves (a jump forgets almost all at once; lights that stand still, nothing).
+  float forgetOnLightMove = 0.0f;
   // Guided vs BSDF sampling (times the diffuse share and the point's confidence). On the
   // door scene without NEE, 0.5 gives relMSE 5.95 vs 10.2 unguided (3 seeds); 0.8 finds the
   // light more often but lets fireflies through (BSDF-sampled paths in low-Q directions).

@@ -45,7 +45,7 @@ void LearnedTable::allocate(const gpu::Context& ctx, uint64_t slots, uint32_t le
   cdf = makeTableBuffer(ctx, entries * 4, name + ".cdf");
   sums = makeTableBuffer(ctx, entries * 8, name + ".sums");  // 64-bit fixed point per entry
   counts = makeTableBuffer(ctx, entries * 4, name + ".counts");
-  rowPasses = makeTableBuffer(ctx, std::max<uint64_t>(slots, 1) * 4, name + ".rowPasses");
+  rowClocks = makeTableBuffer(ctx, std::max<uint64_t>(slots, 1) * 4, name + ".rowClocks");
   cdfView = std::make_unique<gpu::BufferView>(ctx, *cdf, VK_FORMAT_R32_SFLOAT);
 }
 
@@ -65,13 +65,13 @@ void LearnedTable::recordReset(gpu::PassRecorder& rec, float initial, uint64_t f
   fill(*sums, 0, 8);
   fill(*counts, 0, 4);
   fill(*cdf, 0, 4);
-  // A reset row has nothing to age, so its last pass only needs a defined start.
-  if (whole) rec.fill("guiding.reset", *rowPasses, 0);
+  // A reset row has nothing to age, so its clock only needs a defined start.
+  if (whole) rec.fill("guiding.reset", *rowClocks, 0);
 }
 
 uint64_t LearnedTable::memoryBytes() const {
   return values->size() + visits->size() + cdf->size() + sums->size() + counts->size() +
-         rowPasses->size();
+         rowClocks->size();
 }
 
 uint64_t LearnedTables::memoryBytes() const {
@@ -134,8 +134,7 @@ void LearnedTables::recordUpdate(gpu::PassRecorder& rec, const char* name,
   push.alphaMax = settings.alphaMax;
   push.floorValue = settings.qFloor;
   push.everyRow = everyRow ? 1u : 0u;
-  push.pass = learningPasses_;
-  push.forgetPerPass = settings.halfLifeFrames > 0 ? -1.0f / settings.halfLifeFrames : 0.0f;
+  push.clock = float(clock_);
   const uint32_t groups = (rows + QL_Q_UPDATE_GROUP_SIZE - 1) / QL_Q_UPDATE_GROUP_SIZE;
   rec.pass(name, update_)
       .write(QL_Q_UPDATE_BIND_VALUES, *table.values)
@@ -144,13 +143,15 @@ void LearnedTables::recordUpdate(gpu::PassRecorder& rec, const char* name,
       .write(QL_Q_UPDATE_BIND_SUMS, *table.sums)
       .write(QL_Q_UPDATE_BIND_COUNTS, *table.counts)
       .write(QL_Q_UPDATE_BIND_POINT_UPDATES, *pointUpdates_)
-      .write(QL_Q_UPDATE_BIND_ROW_PASSES, *table.rowPasses)
+      .write(QL_Q_UPDATE_BIND_ROW_CLOCKS, *table.rowClocks)
       .push(push)
       .dispatch(std::min(groups, kMaxGroupsX), (groups + kMaxGroupsX - 1) / kMaxGroupsX);
 }
 
 void LearnedTables::recordLearning(gpu::PassRecorder& rec, uint32_t rows,
                                    const GuidingSettings& settings) {
+  clock_ += (settings.halfLifeFrames > 0 ? 1.0 / settings.halfLifeFrames : 0.0) + pendingHalvings_;
+  pendingHalvings_ = 0.0f;
   recordUpdate(rec, "guiding.q_update", q_, rows, true, false, settings);
   if (lights_ > 0 && learningPasses_ % kLightUpdateInterval == 0)
     recordUpdate(rec, "guiding.v_update", v_, rows, false, false, settings);

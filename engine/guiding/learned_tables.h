@@ -20,7 +20,7 @@ namespace qlight::guiding {
 // One learned table (Q over strata, or V over lights) and its frame accumulators.
 struct LearnedTable {
   std::unique_ptr<gpu::Buffer> values, visits, cdf, sums, counts;
-  std::unique_ptr<gpu::Buffer> rowPasses;    // per row: the learning pass that last updated it
+  std::unique_ptr<gpu::Buffer> rowClocks;    // per row: the forgetting clock at its last update
   std::unique_ptr<gpu::BufferView> cdfView;  // the path passes read the CDF as a texel buffer
   uint32_t rowLength = 0;                    // entries per slot
 
@@ -47,6 +47,9 @@ class LearnedTables {
   // After the frame's tracing: the frame's targets applied to the first `rows` rows
   // (D&K eq. 5 with the batched learning rate), and the CDFs of the rows that had any.
   void recordLearning(gpu::PassRecorder& rec, uint32_t rows, const GuidingSettings& settings);
+  // Tracking: `halvings` more for every row at the next learning pass (on top of the
+  // half-life's 1 / halfLifeFrames a pass).
+  void forget(float halvings) { pendingHalvings_ += halvings; }
 
   uint32_t lights() const { return lights_; }
   uint64_t memoryBytes() const;  // GPU buffers
@@ -81,7 +84,11 @@ class LearnedTables {
   std::unique_ptr<gpu::Buffer> pointUpdates_;
   std::unique_ptr<gpu::BufferView> pointUpdatesView_;
   uint32_t slots_ = 0, lights_ = 0;
-  uint32_t learningPasses_ = 0;  // for the light-value update interval and the rows' ages
+  uint32_t learningPasses_ = 0;  // for the light-value update interval
+  // The forgetting clock, in halvings: a row's counts are aged by the clock's advance since
+  // its last update (2^-(clock - its clock)), lazily, when it next receives targets.
+  double clock_ = 0.0;
+  float pendingHalvings_ = 0.0f;
 };
 
 }  // namespace qlight::guiding

@@ -45,6 +45,9 @@ class QGuide final : public render::Guide {
   void uploadPoints(ecs::Registry& registry);
   // Learn phase, after the frame's path tracing: the Q (and V) updates, then the CDFs.
   void recordLearning(gpu::PassRecorder& recorder);
+  // Upload phase: the lights moved this share of the scene's radius since the last frame
+  // (tracking forgets settings().forgetOnLightMove halvings per radius at the next learning).
+  void noteLightMotion(float share) { tables_.forget(share * settings_.forgetOnLightMove); }
 
   GuidingStats stats() const;
   // GPU memory of the guide's buffers: points, grid, tables, spawn reports, dart candidates.

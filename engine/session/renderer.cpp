@@ -21,8 +21,10 @@ Renderer::Renderer(const gpu::Context& ctx, const scene::SceneAsset& asset,
       scene_(ctx, asset),
       tracer_(ctx, settings),
       nullGuide_(ctx),
-      timer_(ctx) {
+      timer_(ctx),
+      lightMotion_(asset) {
   scene_.update(world_.draw());
+  lightMotion_.update(world_.draw(), scene_.boundsRadius());
   // The frame's resources live as long as the renderer; each frame only fills them in.
   world_.registry().setResource<FrameView>();
   world_.registry().setResource<FrameRecording>();
@@ -69,6 +71,8 @@ void Renderer::uploadScene() {
   // Moving lights and objects change the image: accumulation restarts (or fades, with
   // temporal blending), while the learned distributions persist and follow the lights.
   scene_.update(world_.draw());
+  const float lightMoved = lightMotion_.update(world_.draw(), scene_.boundsRadius());
+  if (qGuide_) qGuide_->noteLightMotion(lightMoved);
   float blend = tracer_.settings().temporalBlend;
   if (blend > 0.0f)
     tracer_.fadeAccumulation(blend);

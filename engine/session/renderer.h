@@ -23,6 +23,7 @@
 #include "engine/guiding/q_guide.h"
 #include "engine/render/gpu_scene.h"
 #include "engine/render/path_tracer.h"
+#include "engine/session/light_motion.h"
 #include "engine/session/render_stats.h"
 #include "engine/session/scene_world.h"
 
@@ -89,6 +90,7 @@ class Renderer {
   guiding::NullGuide nullGuide_;
   std::unique_ptr<guiding::QGuide> qGuide_;
   gpu::GpuTimer timer_;
+  LightMotion lightMotion_;  // how far lights moved: what tracking forgets by
   double pointGenerationSeconds_ = 0;
 };
 

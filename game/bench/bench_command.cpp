@@ -35,6 +35,7 @@ struct BenchArgs {
   bool report = true;
   bool tracking = false;  // the tracking study instead of the equal-time comparison
   uint32_t seeds = 0;     // tracking: runs per method (quick 2, full 8)
+  bool trackingHalfLifeSet = false, trackingForgetSet = false;  // else the demo's
   // The methods' renderer and guiding settings (each method sets guiding on or off and
   // light learning itself).
   render::RenderSettings render;
@@ -118,8 +119,8 @@ int runTracking(BenchArgs a, const CommonOptions& common) {
   t.render.height = a.height != 0 ? a.height : a.quick ? 36 : 72;
   t.render.samplesPerFrame = a.sppPerFrame != 0 ? a.sppPerFrame : 1;
   t.guiding = a.guiding;
-  t.trackingHalfLife =
-      a.guiding.halfLifeFrames > 0 ? a.guiding.halfLifeFrames : kDemoHalfLifeFrames;
+  t.trackingHalfLife = a.trackingHalfLifeSet ? a.guiding.halfLifeFrames : kDemoHalfLifeFrames;
+  t.trackingForget = a.trackingForgetSet ? a.guiding.forgetOnLightMove : kDemoForgetOnLightMove;
   t.seeds = a.seeds != 0 ? a.seeds : a.quick ? 2 : 8;
   t.referenceSpp = a.referenceSpp != 0 ? a.referenceSpp : a.quick ? 32 : 128;
   t.cacheDir = cacheDirectory(a);
@@ -273,6 +274,8 @@ std::function<int()> addBenchCommand(CLI::App& app, const CommonOptions& common)
   return [cmd, args, &common]() -> int {
     if (!cmd->parsed()) return -1;
     finishGuidingOptions(args->guidingCli, args->guiding, args->render);
+    args->trackingHalfLifeSet = cmd->count("--half-life") > 0;
+    args->trackingForgetSet = cmd->count("--forget-on-light-move") > 0;
     return runBench(*args, common);
   };
 }

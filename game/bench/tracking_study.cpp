@@ -59,10 +59,19 @@ std::vector<TrackingMethod> trackingMethods(const TrackingStudySettings& s) {
   guiding::GuidingSettings tracking = s.guiding, rememberAll = s.guiding, off = s.guiding;
   tracking.enabled = rememberAll.enabled = true;
   tracking.halfLifeFrames = s.trackingHalfLife;
+  tracking.forgetOnLightMove = s.trackingForget;
   rememberAll.halfLifeFrames = 0.0f;
+  rememberAll.forgetOnLightMove = 0.0f;
   off.enabled = false;
-  char label[64];
-  std::snprintf(label, sizeof(label), "guided, half-life %.0f frames", s.trackingHalfLife);
+  char label[96];
+  if (s.trackingHalfLife > 0 && s.trackingForget > 0)
+    std::snprintf(label, sizeof(label), "guided, half-life %.0f frames, %.1f halvings/radius moved",
+                  s.trackingHalfLife, s.trackingForget);
+  else if (s.trackingHalfLife > 0)
+    std::snprintf(label, sizeof(label), "guided, half-life %.0f frames", s.trackingHalfLife);
+  else
+    std::snprintf(label, sizeof(label), "guided, %.1f halvings per radius a light moves",
+                  s.trackingForget);
   return {{"tracking", label, tracking},
           {"remember_all", "guided, remembers everything (rate 1/visits)", rememberAll},
           {"unguided", "unguided", off}};
@@ -195,6 +204,9 @@ nlohmann::json runTrackingStudy(const gpu::Context& ctx, const TrackingStudySett
            {"half_life_frames", methods[m].guiding.enabled
                                     ? nlohmann::json(methods[m].guiding.halfLifeFrames)
                                     : nullptr},
+           {"forget_on_light_move", methods[m].guiding.enabled
+                                        ? nlohmann::json(methods[m].guiding.forgetOnLightMove)
+                                        : nullptr},
            {"rel_mse", errors[m]},
            {"mean_rel_mse", number(mean)},
            {"mean_ratio_to_unguided",

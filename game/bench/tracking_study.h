@@ -1,7 +1,7 @@
 // The tracking study (`qlight bench --tracking`): how fast guiding follows a light that
 // jumps and one that moves. Each frame is rendered on its own (1 spp by default, the
 // accumulation restarted) and compared with a reference of that frame's light position;
-// guiding that forgets (the demo's half-life), guiding that remembers everything (the
+// guiding that forgets (the demo's tracking), guiding that remembers everything (the
 // learning rate vanishes as 1 / visits) and unguided rendering run the same frames, each
 // over several seeds whose per-frame errors are averaged. Writes tracking.json and, by
 // tools/tracking_plot.py, tracking.png.
@@ -18,7 +18,8 @@ namespace qlight::game::bench {
 struct TrackingStudySettings {
   render::RenderSettings render;     // size and samples per frame of each frame
   guiding::GuidingSettings guiding;  // the guided methods' base settings
-  float trackingHalfLife = 8.0f;     // frames: the tracking method's half-life
+  float trackingHalfLife = 0.0f;     // the tracking method's: frames (0: not by time)
+  float trackingForget = 4.0f;       // and halvings per scene radius a light moves
   uint32_t seeds = 8;                // runs per method, averaged per frame
   uint32_t frames = 180;             // 10 frames per second of scene time
   uint32_t referenceSpp = 128;       // per distinct light position

@@ -69,7 +69,7 @@ QL_FN uint gridCellHash(ivec3 c, uint hashSize) {
 #define QL_Q_UPDATE_BIND_SUMS 3
 #define QL_Q_UPDATE_BIND_COUNTS 4
 #define QL_Q_UPDATE_BIND_POINT_UPDATES 5
-#define QL_Q_UPDATE_BIND_ROW_PASSES 6  // the learning pass that last updated each row
+#define QL_Q_UPDATE_BIND_ROW_CLOCKS 6  // the forgetting clock at each row's last update
 #define QL_Q_UPDATE_GROUP_SIZE 64
 
 struct TableUpdatePush {
@@ -82,10 +82,9 @@ struct TableUpdatePush {
   float alphaMin;
   float alphaMax;
   float floorValue;
-  uint everyRow;        // 1: rebuild the CDF of rows without targets too (after a reset)
-  uint pass;            // learning passes so far (the age of a row is pass - its last pass)
-  float forgetPerPass;  // log2 of what a pass keeps of the visit counts: -1 / half-life (0: all)
-  uint pad0;
+  uint everyRow;  // 1: rebuild the CDF of rows without targets too (after a reset)
+  float clock;    // tracking's forgetting clock (halvings so far; a row ages by its advance)
+  uint pad0, pad1;
 };
 QL_CHECK_SIZE(TableUpdatePush, 48);
 
@@ -149,11 +148,11 @@ QL_FN float retainedAfterUpdates(uint n0, uint m, float alphaMin, float alphaMax
 
 // One entry's update from a frame's m targets summing to targetSum. A
 // non-finite result keeps the old value: NaN or Inf never enters a table.
-// What a row keeps of its visit counts (and its point's confidence) after `age` learning
-// passes: 2^(-age / half-life).
-QL_FN uint agedCount(uint count, uint age, float forgetPerPass) {
-  if (forgetPerPass == 0.0f || age == 0u) return count;
-  return uint(float(count) * exp2(forgetPerPass * float(age)));
+// What a row keeps of its visit counts (and its point's confidence) after the forgetting
+// clock advanced `halvings` since its last update.
+QL_FN uint agedCount(uint count, float halvings) {
+  if (!(halvings > 0.0f)) return count;
+  return uint(float(count) * exp2(-halvings));
 }
 
 // How far a point's learned distribution can be trusted: 0 without updates, 1 after

@@ -44,6 +44,7 @@ Settings everyFieldChanged() {
   s.guiding.alphaMin = 0.0123f;
   s.guiding.alphaMax = 0.75f;
   s.guiding.halfLifeFrames = 33.3f;
+  s.guiding.forgetOnLightMove = 2.5f;
   s.guiding.selectProbability = 0.61f;
   s.guiding.confidenceUpdates = 7.5f;
   s.guiding.pointBudget = 5000;
@@ -78,6 +79,7 @@ void expectSameGuiding(const guiding::GuidingSettings& a, const guiding::Guiding
   EXPECT_EQ(a.alphaMin, b.alphaMin);
   EXPECT_EQ(a.alphaMax, b.alphaMax);
   EXPECT_EQ(a.halfLifeFrames, b.halfLifeFrames);
+  EXPECT_EQ(a.forgetOnLightMove, b.forgetOnLightMove);
   EXPECT_EQ(a.selectProbability, b.selectProbability);
   EXPECT_EQ(a.confidenceUpdates, b.confidenceUpdates);
   EXPECT_EQ(a.pointBudget, b.pointBudget);

@@ -20,7 +20,7 @@ class QUpdateGpu : public GpuTest {};
 // One table's buffers for `points` rows of `n` entries in all, and the learning pass over
 // them as LearnedTables records it.
 struct TableBuffers {
-  gpu::Buffer q, visits, cdf, sums, counts, pointUpdates, rowPasses;
+  gpu::Buffer q, visits, cdf, sums, counts, pointUpdates, rowClocks;
   TableBuffers(const gpu::Context& ctx, uint32_t n, uint32_t points)
       : q(ctx, n * 4, "q"),
         visits(ctx, n * 4, "visits"),
@@ -28,7 +28,7 @@ struct TableBuffers {
         sums(ctx, n * 8, "sums"),
         counts(ctx, n * 4, "counts"),
         pointUpdates(ctx, points * 4, "pointUpdates"),
-        rowPasses(ctx, points * 4, "rowPasses") {}
+        rowClocks(ctx, points * 4, "rowClocks") {}
   void learningPass(const gpu::Context& ctx, const shared::TableUpdatePush& push) const {
     gpu::ComputePipeline update(ctx, "q_update");
     ctx.submitAndWait([&](VkCommandBuffer cmd) {
@@ -40,7 +40,7 @@ struct TableBuffers {
           .write(QL_Q_UPDATE_BIND_SUMS, sums)
           .write(QL_Q_UPDATE_BIND_COUNTS, counts)
           .write(QL_Q_UPDATE_BIND_POINT_UPDATES, pointUpdates)
-          .write(QL_Q_UPDATE_BIND_ROW_PASSES, rowPasses)
+          .write(QL_Q_UPDATE_BIND_ROW_CLOCKS, rowClocks)
           .push(push)
           .dispatch((push.rowCount + QL_Q_UPDATE_GROUP_SIZE - 1) / QL_Q_UPDATE_GROUP_SIZE);
       rec.finish();
@@ -74,7 +74,7 @@ TEST_F(QUpdateGpu, UpdateAndCdfMatchCpuReference) {
 
   TableBuffers t(ctx(), n, points);
   gpu::Buffer &bq = t.q, &bv = t.visits, &bc = t.cdf, &bs = t.sums, &bn = t.counts,
-              &bp = t.pointUpdates, &br = t.rowPasses;
+              &bp = t.pointUpdates, &br = t.rowClocks;
   std::vector<uint32_t> noUpdates(points, 0);
   const float kUntouched = -1.0f;  // CDF sentinel: rows the pass skips keep it
   bc.upload<float>(ctx(), std::vector<float>(n, kUntouched));
@@ -141,39 +141,40 @@ TEST_F(QUpdateGpu, UpdateAndCdfMatchCpuReference) {
   EXPECT_TRUE(std::isfinite(gq[7]));
 }
 
-// Tracking: a row updated at pass 10 that was last updated at pass 2 first ages its visit
-// counts and its point's update count by 2^(-8 / half-life), then learns with the aged
-// counts (a higher learning rate); a row without targets keeps its counts until it is used.
-TEST_F(QUpdateGpu, HalfLifeAgesCountsByThePassesSinceTheRowsLastUpdate) {
+// Tracking: a row updated when the forgetting clock reads 3.6 halvings, last updated at 2.0,
+// first ages its visit counts and its point's update count by 2^-1.6, then learns with the
+// aged counts (a higher learning rate); a row without targets keeps its counts (and clock)
+// until it is used.
+TEST_F(QUpdateGpu, CountsAgeByTheClocksAdvanceSinceTheRowsLastUpdate) {
   const uint32_t points = 2, rows = 2, cols = 2, strata = rows * cols, n = points * strata;
-  const float aMin = 1e-4f, aMax = 1.0f, qFloor = 1e-4f, halfLife = 5.0f;
-  const uint32_t lastPass = 2, pass = 10;
+  const float aMin = 1e-4f, aMax = 1.0f, qFloor = 1e-4f;
+  const float lastClock = 2.0f, clock = 3.6f;
   std::vector<float> q{1.0f, 1.0f, 1.0f, 1.0f, 0.5f, 0.5f, 0.5f, 0.5f};
   std::vector<uint32_t> visits{1000, 400, 0, 77, 1000, 1000, 1000, 1000};
   std::vector<uint32_t> counts{4, 0, 2, 0, 0, 0, 0, 0};  // point 1: no targets
-  std::vector<uint32_t> fixedSums(2 * n, 0), pointUpdates{900, 900}, rowPasses{lastPass, lastPass};
+  std::vector<uint32_t> fixedSums(2 * n, 0), pointUpdates{900, 900};
+  std::vector<float> rowClocks{lastClock, lastClock};
   fixedSums[0] = uint32_t(4 * 3.0 * shared::kTargetScale);  // 4 targets of 3
   fixedSums[4] = uint32_t(2 * 2.0 * shared::kTargetScale);  // 2 targets of 2
   TableBuffers t(ctx(), n, points);
   gpu::Buffer &bq = t.q, &bv = t.visits, &bc = t.cdf, &bs = t.sums, &bn = t.counts,
-              &bp = t.pointUpdates, &br = t.rowPasses;
+              &bp = t.pointUpdates, &br = t.rowClocks;
   bq.upload<float>(ctx(), q);
   bv.upload<uint32_t>(ctx(), visits);
   bc.upload<float>(ctx(), std::vector<float>(n, 0.0f));
   bs.upload<uint32_t>(ctx(), fixedSums);
   bn.upload<uint32_t>(ctx(), counts);
   bp.upload<uint32_t>(ctx(), pointUpdates);
-  br.upload<uint32_t>(ctx(), rowPasses);
-  t.learningPass(ctx(),
-                 {points, strata, rows, cols, 1, aMin, aMax, qFloor, 0, pass, -1.0f / halfLife});
+  br.upload<float>(ctx(), rowClocks);
+  t.learningPass(ctx(), {points, strata, rows, cols, 1, aMin, aMax, qFloor, 0, clock});
   auto gq = bq.read<float>(ctx());
   auto gv = bv.read<uint32_t>(ctx());
   auto gp = bp.read<uint32_t>(ctx());
-  auto gr = br.read<uint32_t>(ctx());
-  const double keep = std::exp2(-8.0 / halfLife);  // 0.33
+  auto gr = br.read<float>(ctx());
+  const double keep = std::exp2(double(lastClock) - double(clock));  // 0.33
   auto aged = [&](uint32_t c) { return uint32_t(double(c) * keep); };
-  EXPECT_EQ(gr[0], pass);
-  EXPECT_EQ(gr[1], lastPass) << "a row without targets is not touched";
+  EXPECT_EQ(gr[0], clock);
+  EXPECT_EQ(gr[1], lastClock) << "a row without targets is not touched";
   EXPECT_EQ(gp[0], aged(900) + 6);
   EXPECT_EQ(gp[1], 900u);
   for (uint32_t k = 0; k < strata; ++k) EXPECT_EQ(gv[k], aged(visits[k]) + counts[k]) << k;
@@ -181,7 +182,7 @@ TEST_F(QUpdateGpu, HalfLifeAgesCountsByThePassesSinceTheRowsLastUpdate) {
   // Stratum 0: 4 targets of 3 after 1000 visits aged to 329: the running mean over 333.
   const double n0 = aged(1000);
   EXPECT_NEAR(gq[0], (n0 * 1.0 + 4 * 3.0) / (n0 + 4), 1e-5);
-  // Without the half-life the same update would have moved Q about 3x less.
+  // Without the aging the same update would have moved Q about 3x less.
   EXPECT_GT(gq[0] - 1.0, 2.5 * ((1000.0 + 12.0) / 1004.0 - 1.0));
   EXPECT_NEAR(gq[2], 2.0f, 1e-6) << "a first visit takes the targets' mean";
   EXPECT_FLOAT_EQ(gq[1], 1.0f);
