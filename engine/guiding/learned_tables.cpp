@@ -158,6 +158,18 @@ void LearnedTables::recordLearning(gpu::PassRecorder& rec, uint32_t rows,
   ++learningPasses_;
 }
 
+void LearnedTables::ageNow(uint32_t rows, const GuidingSettings& settings) {
+  clock_ += pendingHalvings_;
+  pendingHalvings_ = 0.0f;
+  // With no targets pending, the pass over every row only ages it and rebuilds its CDF.
+  ctx_.submitAndWait([&](VkCommandBuffer cmd) {
+    gpu::PassRecorder rec(ctx_, cmd);
+    recordUpdate(rec, "guiding.q_age", q_, rows, true, true, settings);
+    if (lights_ > 0) recordUpdate(rec, "guiding.v_age", v_, rows, false, true, settings);
+    rec.finish();
+  });
+}
+
 LearnedTables::ValueRange LearnedTables::qRange() const {
   const std::vector<float> q = readAllQ();
   ValueRange r;

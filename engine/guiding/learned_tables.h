@@ -50,6 +50,10 @@ class LearnedTables {
   // Tracking: `halvings` more for every row at the next learning pass (on top of the
   // half-life's 1 / halfLifeFrames a pass).
   void forget(float halvings) { pendingHalvings_ += halvings; }
+  float pendingHalvings() const { return pendingHalvings_; }
+  // Applies the pending halvings to the first `rows` rows now (their counts and CDFs), in a
+  // submission of its own: for a jump, before the frame's paths read the confidence.
+  void ageNow(uint32_t rows, const GuidingSettings& settings);
 
   uint32_t lights() const { return lights_; }
   uint64_t memoryBytes() const;  // GPU buffers

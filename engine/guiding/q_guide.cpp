@@ -145,6 +145,11 @@ render::GuideFeatures QGuide::features() const {
   return f;
 }
 
+void QGuide::noteLightMotion(float share) {
+  tables_.forget(share * settings_.forgetOnLightMove);
+  if (points_ && tables_.pendingHalvings() >= 1.0f) tables_.ageNow(points_->slotEnd(), settings_);
+}
+
 void QGuide::recordLearning(gpu::PassRecorder& rec) {
   if (!settings_.learn) return;  // frozen: no targets were recorded, the tables stand
   tables_.recordLearning(rec, points_->slotEnd(), settings_);

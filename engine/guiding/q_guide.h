@@ -47,7 +47,9 @@ class QGuide final : public render::Guide {
   void recordLearning(gpu::PassRecorder& recorder);
   // Upload phase: the lights moved this share of the scene's radius since the last frame
   // (tracking forgets settings().forgetOnLightMove halvings per radius at the next learning).
-  void noteLightMotion(float share) { tables_.forget(share * settings_.forgetOnLightMove); }
+  // A jump (a halving or more) ages every row at once, before this frame's paths read the
+  // points' confidence: they sample by the BSDF until the points have learned again.
+  void noteLightMotion(float share);
 
   GuidingStats stats() const;
   // GPU memory of the guide's buffers: points, grid, tables, spawn reports, dart candidates.
