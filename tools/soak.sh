@@ -1,6 +1,6 @@
 #!/usr/bin/env bash
 # The soak run: 10,000 headless frames of the demo's default scene (door ajar, moving light) at
-# 64x36 with guiding, learned light selection and tracking (the demo's half-life), the validation layer
+# 64x36 with guiding, learned light selection and tracking (the demo's forgetting on light moves), the validation layer
 # on (without synchronization validation, whose history in Debian 12's layer grows by
 # ~150 KB per frame; tests run with it). Prints resident memory and device allocations at frames 1,000 and 10,000, the range of
 # the Q tables at the end, rejected samples and the exit code (3: validation messages).
