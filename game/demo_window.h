@@ -41,7 +41,7 @@ struct DemoArgs {
   std::string screenshotAtExit;     // PNG of the render written when the window closes
   bool showCachePoints = false;     // the cache points overlay from the start
   bool reuseHistory = true;         // display: reproject the last frame while moving
-  bool denoise = false;             // display: the a-trous denoiser
+  bool denoise = true;              // display: the a-trous denoiser
   std::vector<float> inspectAt;     // window pixel whose Q is shown instead of the cursor's
 };
 

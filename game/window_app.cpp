@@ -96,6 +96,7 @@ void WindowApp::registerDisplay() {
         const render::PathTracer& tracer = renderer_.tracer();
         const gpu::Image* shown = &tracer.accumulation();
         if (filterSettings_.active()) {
+          filterSettings_.maxLuminance = 4.0f / std::max(wanted_.exposure, 1e-6f);
           filter_.record(recorder, renderer_.scene(), tracer.accumulation(),
                          tracer.keptOfPrevious(), r.resource<session::FrameView>().camera,
                          filterSettings_);

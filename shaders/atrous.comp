@@ -3,7 +3,8 @@
 // displayed image: a 5x5 B3-spline kernel with holes of `step` pixels, each tap weighted by
 // how alike its primary hit is (normal, distance, base colour) and its brightness. The first
 // iteration divides by the base colour and the last multiplies it back, so texture and
-// material edges stay sharp. Input and output: rgb sum, a weight. Display only.
+// material edges stay sharp. Input: rgb sum, a weight; the last output too (a = 1), the
+// ones between carry the colour and the samples. Display only.
 #extension GL_EXT_scalar_block_layout : require
 #extension GL_GOOGLE_include_directive : require
 #include "../engine/ui/display_filter_types.h"
@@ -17,10 +18,21 @@ layout(push_constant, scalar) uniform Push { AtrousPush pc; };
 
 float luminance(vec3 c) { return dot(c, vec3(0.2126, 0.7152, 0.0722)); }
 
+// Samples behind a pixel: the first pass's input has them as its weight (rgb sum, a weight),
+// the later passes carry them in alpha (rgb the filtered colour).
+float samplesAt(ivec2 p) { return imageLoad(uInput, p).a; }
+
 vec3 colourAt(ivec2 p) {
   vec4 v = imageLoad(uInput, p);
+  if (pc.first == 0u) return v.rgb;
   vec3 c = v.a > 0.0 ? v.rgb / v.a : vec3(0.0);
-  return pc.first != 0u ? c / imageLoad(uAlbedo, p).rgb : c;
+  // A firefly would print the kernel's holes into its neighbours: above what the display
+  // shows as white it adds nothing visible, so it is scaled down to that first (emitters,
+  // a = 0, are kept out of the filter as they are).
+  vec4 albedo = imageLoad(uAlbedo, p);
+  float l = luminance(c);
+  if (albedo.a != 0.0 && l > pc.maxLuminance) c *= pc.maxLuminance / l;
+  return c / albedo.rgb;
 }
 
 void main() {
@@ -33,10 +45,14 @@ void main() {
   vec4 albedo0 = imageLoad(uAlbedo, pixel);
   vec3 a0 = albedo0.rgb;
   if (albedo0.a == 0.0) {  // an emitter: its radiance is exact, and far from its neighbours'
-    imageStore(uOutput, pixel, vec4(pc.last != 0u ? c0 * a0 : c0, 1.0));
+    imageStore(uOutput, pixel, vec4(pc.last != 0u ? c0 * a0 : c0, pc.last != 0u ? 1.0 : 1e6));
     return;
   }
   float l0 = luminance(c0);
+  // Brightness edges stop the filter, but at a few samples a pixel's brightness is mostly
+  // noise: the tolerance widens as 1 / sqrt(samples).
+  float samples = max(samplesAt(pixel), 1e-3);
+  float sigma = pc.colourSigma * max(1.0, 4.0 / sqrt(samples));
   vec3 sum = vec3(0.0);
   float weights = 0.0;
   for (int dy = -2; dy <= 2; ++dy)
@@ -57,11 +73,11 @@ void main() {
       }
       w *= exp(-length(a0 - a) * 10.0);
       float l = luminance(c);
-      w *= exp(-abs(l0 - l) / (pc.colourSigma * (0.5 * (l0 + l)) + 1e-4));
+      w *= exp(-abs(l0 - l) / (sigma * (0.5 * (l0 + l)) + 1e-4));
       sum += w * c;
       weights += w;
     }
   vec3 filtered = weights > 0.0 ? sum / weights : c0;
   if (pc.last != 0u) filtered *= a0;
-  imageStore(uOutput, pixel, vec4(filtered, 1.0));
+  imageStore(uOutput, pixel, vec4(filtered, pc.last != 0u ? 1.0 : samples));
 }

@@ -73,7 +73,7 @@ void DisplayFilter::record(gpu::PassRecorder& rec, const render::GpuScene& scene
     for (int i = 0; i < settings.iterations; ++i) {
       const uint32_t target = uint32_t(i % 2);
       shared::AtrousPush push{1 << i, settings.strength, i == 0 ? 1u : 0u,
-                              i + 1 == settings.iterations ? 1u : 0u};
+                              i + 1 == settings.iterations ? 1u : 0u, settings.maxLuminance};
       rec.pass("filter.atrous", atrous_)
           .read(QL_ATROUS_BIND_INPUT, *input)
           .write(QL_ATROUS_BIND_OUTPUT, *filtered_[target])

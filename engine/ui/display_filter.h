@@ -21,8 +21,9 @@ struct DisplayFilterSettings {
   bool reuseHistory = true;  // reproject the last frame when the accumulation restarts
   float historyFrames = 8;   // most frames of weight a reprojected history keeps
   bool denoise = false;
-  float strength = 1.0f;  // the a-trous colour tolerance (larger: smoother, blurrier)
-  int iterations = 4;     // a-trous iterations: the kernel reaches 2^(iterations+1) pixels
+  float strength = 1.0f;      // the a-trous colour tolerance (larger: smoother, blurrier)
+  int iterations = 4;         // a-trous iterations: the kernel reaches 2^(iterations+1) pixels
+  float maxLuminance = 4.0f;  // fireflies are scaled down to this first (the window: 4 / exposure)
   bool active() const { return reuseHistory || denoise; }
 };
 

@@ -33,11 +33,13 @@ QL_CHECK_SIZE(FilterUniforms, 144);
 // of `step` pixels, stopped at edges of normal, depth, albedo and colour.
 struct AtrousPush {
   int step;
-  float colourSigma;  // scale of the relative luminance difference allowed (larger: smoother)
-  uint first;         // divide by albedo (filter the irradiance)
-  uint last;          // multiply the albedo back
+  float colourSigma;   // scale of the relative luminance difference allowed (larger: smoother)
+  uint first;          // divide by albedo (filter the irradiance), clamp fireflies
+  uint last;           // multiply the albedo back
+  float maxLuminance;  // first pass: brighter pixels are scaled down to this (display only)
+  uint pad0, pad1, pad2;
 };
-QL_CHECK_SIZE(AtrousPush, 16);
+QL_CHECK_SIZE(AtrousPush, 32);
 QL_END
 
 #endif

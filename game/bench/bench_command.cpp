@@ -111,7 +111,7 @@ std::string isoDate() {
   return text;
 }
 
-// The tracking study: 1 spp per frame (a realtime frame), the demo's half-life.
+// The tracking study: 1 spp per frame (a realtime frame), the demo's forgetting.
 int runTracking(BenchArgs a, const CommonOptions& common) {
   TrackingStudySettings t;
   t.render = a.render;
