@@ -12,6 +12,9 @@
 namespace qlight::test {
 namespace {
 
+// Outputs go to a folder the test process removes when it exits.
+const std::string kTmp = tempDir("render_cli").string();
+
 namespace fs = std::filesystem;
 
 std::string slurp(const fs::path& p) {
@@ -89,7 +92,7 @@ TEST(RenderCli, MaxDepthZeroShowsOnlyEmitters) {
 }
 
 TEST(RenderCli, MissingSceneIsAOneLineErrorNamingTheFile) {
-  auto r = runQlight("render --scene /nonexistent/scene.gltf --out /tmp/x.png");
+  auto r = runQlight("render --scene /nonexistent/scene.gltf --out " + kTmp + "/x.png");
   EXPECT_NE(r.exitCode, 0);
   EXPECT_NE(r.output.find("qlight: error:"), std::string::npos) << r.output;
   EXPECT_NE(r.output.find("/nonexistent/scene.gltf"), std::string::npos) << r.output;
@@ -107,13 +110,14 @@ TEST(RenderCli, MalformedSceneIsAnError) {
 
 TEST(RenderCli, UnknownImageFormatIsAnError) {
   auto r = runQlight("render --scene " + asset("cornell_box.gltf") +
-                     " --width 8 --height 8 --spp 1 --out /tmp/qlight_x.bmp");
+                     " --width 8 --height 8 --spp 1 --out " + kTmp + "/qlight_x.bmp");
   EXPECT_NE(r.exitCode, 0);
   EXPECT_NE(r.output.find("qlight_x.bmp"), std::string::npos) << r.output;
 }
 
 TEST(RenderCli, AbsurdSettingsAreRejected) {
-  std::string base = "render --scene " + asset("cornell_box.gltf") + " --out /tmp/qlight_y.png ";
+  std::string base =
+      "render --scene " + asset("cornell_box.gltf") + " --out " + kTmp + "/qlight_y.png ";
   for (const char* bad :
        {"--width 0", "--height -3", "--spp 0", "--max-depth 100000", "--exposure nan",
         "--exposure -1", "--estimator magic", "--rr maybe", "--time -1", "--strata 0x8",
@@ -131,7 +135,7 @@ TEST(RenderCli, AbsurdSettingsAreRejected) {
 // Q table of a million points x 1024 strata (8 GB of sums against at least 128 MiB).
 TEST(RenderCli, RequestsLargerThanTheDeviceAreRefusedWithTheLimit) {
   const std::string base =
-      "render --scene " + asset("cornell_box.gltf") + " --out /tmp/qlight_big.png --spp 1 ";
+      "render --scene " + asset("cornell_box.gltf") + " --out " + kTmp + "/qlight_big.png --spp 1 ";
   for (const char* big :
        {"--width 16384 --height 16384", "--width 16 --height 16 --points 1000000 --strata 32x32"}) {
     auto r = runQlight(base + big);
@@ -148,7 +152,8 @@ TEST(RenderCli, RequestsLargerThanTheDeviceAreRefusedWithTheLimit) {
 TEST(RenderCli, TexturesLargerThanTheDeviceAreRefusedWithTheLimit) {
   RunResult r = runCommand("QLIGHT_TEST_MAX_TEXEL_ELEMENTS=20000 " + std::string(QLIGHT_BINARY) +
                            " render --scene " + std::string(QLIGHT_SAMPLES_DIR) +
-                           "/BoxTextured.gltf --out /tmp/qlight_bigtex.png --spp 1 --width 8 "
+                           "/BoxTextured.gltf --out " + kTmp +
+                           "/qlight_bigtex.png --spp 1 --width 8 "
                            "--height 8");
   EXPECT_EQ(r.exitCode, 1) << r.output;
   EXPECT_NE(r.output.find("the scene's textures (1 images, 44521 texels"), std::string::npos)
@@ -161,9 +166,11 @@ TEST(RenderCli, TexturesLargerThanTheDeviceAreRefusedWithTheLimit) {
 // and a non-zero exit, for render, demo and bench alike.
 TEST(RenderCli, NoVulkanDeviceIsAOneLineError) {
   for (const std::string& args :
-       {"render --scene " + asset("cornell_box.gltf") + " --out /tmp/qlight_nodev.png --spp 1",
-        std::string("demo --headless --frames 1 --out /tmp/qlight_nodev"),
-        "bench --quick --scene " + asset("cornell_box.gltf") + " --out /tmp/qlight_nodev_bench"}) {
+       {"render --scene " + asset("cornell_box.gltf") + " --out " + kTmp +
+            "/qlight_nodev.png --spp 1",
+        std::string("demo --headless --frames 1 --out " + kTmp + "/qlight_nodev"),
+        "bench --quick --scene " + asset("cornell_box.gltf") + " --out " + kTmp +
+            "/qlight_nodev_bench"}) {
     RunResult r = runCommand(
         "VK_ICD_FILENAMES=/nonexistent/icd.json VK_DRIVER_FILES="
         "/nonexistent/icd.json " +
@@ -178,11 +185,12 @@ TEST(RenderCli, NoVulkanDeviceIsAOneLineError) {
 // render, demo and bench with one line saying so and exit code 1, not a crash or a hang.
 TEST(RenderCli, ADeviceLostMidRunIsAOneLineError) {
   for (const std::string& args :
-       {"render --scene " + asset("door_ajar.gltf") +
-            " --out /tmp/qlight_lost.png --spp 64 --batch 1 --width 32 --height 18",
-        std::string("demo --headless --frames 60 --width 32 --height 18 --out /tmp/qlight_lost"),
-        "bench --quick --scene " + asset("cornell_box.gltf") + " --out /tmp/qlight_lost_bench " +
-            "--cache /tmp/qlight_lost_bench/cache --no-report"}) {
+       {"render --scene " + asset("door_ajar.gltf") + " --out " + kTmp +
+            "/qlight_lost.png --spp 64 --batch 1 --width 32 --height 18",
+        std::string("demo --headless --frames 60 --width 32 --height 18 --out " + kTmp +
+                    "/qlight_lost"),
+        "bench --quick --scene " + asset("cornell_box.gltf") + " --out " + kTmp +
+            "/qlight_lost_bench " + "--cache " + kTmp + "/qlight_lost_bench/cache --no-report"}) {
     RunResult r =
         runCommand("QLIGHT_TEST_LOSE_DEVICE_AFTER=30 " + std::string(QLIGHT_BINARY) + " " + args);
     EXPECT_EQ(r.exitCode, 1) << args << "\n" << r.output;
@@ -200,7 +208,8 @@ TEST(RenderCli, ADeviceLostMidRunIsAOneLineError) {
 TEST(DemoCli, NonFiniteNumbersAreRejected) {
   for (const char* bad : {"--fps nan", "--move-seconds nan", "--move-seconds inf",
                           "--target-frame-ms nan", "--render-scale nan", "--exposure nan"}) {
-    auto r = runQlight(std::string("demo --headless --frames 1 --out /tmp/qlight_nan ") + bad);
+    auto r =
+        runQlight(std::string("demo --headless --frames 1 --out " + kTmp + "/qlight_nan ") + bad);
     EXPECT_NE(r.exitCode, 0) << bad << "\n" << r.output;
     const std::string option = std::string(bad).substr(0, std::string(bad).find(' '));
     EXPECT_NE(r.output.find(option), std::string::npos) << bad << "\n" << r.output;

@@ -6,6 +6,7 @@
 #include <string>
 
 #include "tests/support/run_command.h"
+#include "tests/support/temp_dir.h"
 
 namespace qlight::test {
 
@@ -14,10 +15,7 @@ inline RunResult runQlight(const std::string& args) {
 }
 
 inline std::filesystem::path tempDir(const std::string& name) {
-  auto dir = std::filesystem::temp_directory_path() /
-             ("qlight_test_" + name + "_" + std::to_string(::getpid()));
-  std::filesystem::create_directories(dir);
-  return dir;
+  return processTempDir("test_" + name);
 }
 
 inline std::string asset(const char* name) {

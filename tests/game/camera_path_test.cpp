@@ -10,6 +10,8 @@
 #include <fstream>
 #include <stdexcept>
 
+#include "tests/support/temp_dir.h"
+
 namespace qlight::test {
 namespace {
 
@@ -18,10 +20,7 @@ using game::CameraKey;
 using game::CameraPath;
 
 fs::path tempFile(const std::string& name) {
-  const fs::path dir =
-      fs::temp_directory_path() / ("qlight_camera_path_test_" + std::to_string(::getpid()));
-  fs::create_directories(dir);
-  return dir / name;
+  return test::processTempDir("camera_path_test") / name;
 }
 
 void expectNear(const glm::vec3& a, const glm::vec3& b, float tolerance = 1e-5f) {

@@ -9,6 +9,8 @@
 #include <filesystem>
 #include <fstream>
 
+#include "tests/support/temp_dir.h"
+
 namespace qlight::game {
 namespace {
 
@@ -16,8 +18,7 @@ namespace fs = std::filesystem;
 
 fs::path tempDir() {
   const std::string name = ::testing::UnitTest::GetInstance()->current_test_info()->name();
-  fs::path dir =
-      fs::temp_directory_path() / ("qlight_settings_" + name + "_" + std::to_string(::getpid()));
+  fs::path dir = test::processTempDir("settings_" + name);
   fs::remove_all(dir);
   fs::create_directories(dir);
   return dir;

@@ -6,6 +6,8 @@
 
 #include <fstream>
 
+#include "tests/support/temp_dir.h"
+
 namespace qlight::test {
 namespace {
 
@@ -24,10 +26,7 @@ game::DemoArgs recordingInto(const fs::path& file) {
 }
 
 fs::path tempFile(const std::string& name) {
-  const fs::path dir =
-      fs::temp_directory_path() / ("qlight_window_path_test_" + std::to_string(::getpid()));
-  fs::create_directories(dir);
-  return dir / name;
+  return test::processTempDir("window_path_test") / name;
 }
 
 TEST(WindowCameraPath, RecordsAKeyAFrameAndWritesThemOnStop) {
