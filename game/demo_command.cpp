@@ -8,10 +8,12 @@
 #include <filesystem>
 #include <map>
 #include <memory>
+#include <optional>
 
 #include "engine/gltf/gltf_loader.h"
 #include "engine/session/renderer.h"
 #include "engine/session/stats_json.h"
+#include "engine/ui/display_filter.h"
 #include "game/context_setup.h"
 #include "game/demo_timeline.h"
 #include "game/demo_window.h"
@@ -50,6 +52,16 @@ int runHeadless(const DemoArgs& a, const CommonOptions& common) {
   const DemoTimeline timeline(a, renderer.world().camera(), asset.bounds.radius());
   const uint32_t frameCount = timeline.frames();
 
+  // The PNG frames through the window's display filter, when asked (--denoise or
+  // --reuse-history given): the accumulation, stats.json and the timings stay unfiltered.
+  std::optional<ui::DisplayFilter> filter;
+  ui::DisplayFilterSettings filterSettings;
+  filterSettings.reuseHistory = a.reuseHistory;
+  filterSettings.denoise = a.denoise;
+  filterSettings.maxLuminance = 4.0f / std::max(s.exposure, 1e-6f);
+  if (a.filterHeadless && filterSettings.active()) filter.emplace(*ctx);
+  auto shownImage = [&]() { return filter ? filter->readOutput() : renderer.tracer().readImage(); };
+
   fs::create_directories(a.outDir);
   nlohmann::json frames = nlohmann::json::array();
   session::RenderStats total = renderer.newStats();
@@ -74,11 +86,19 @@ int runHeadless(const DemoArgs& a, const CommonOptions& common) {
                       {"device_allocations", ctx->memoryInUse().allocations},
                       {"device_mib", double(ctx->memoryInUse().bytes) / (1024.0 * 1024.0)},
                       {"gpu_ms", r.gpuMs}});
+    if (filter)
+      ctx->submitAndWait([&](VkCommandBuffer cmd) {
+        gpu::PassRecorder rec(*ctx, cmd);
+        filter->record(rec, renderer.scene(), renderer.tracer().accumulation(),
+                       renderer.tracer().keptOfPrevious(),
+                       renderer.world().registry().resource<session::FrameView>().camera,
+                       filterSettings);
+        rec.finish();
+      });
     if (timeline.written(f)) {
       char name[64];
       std::snprintf(name, sizeof(name), "frame_%04u.png", f);
-      image::writeImage(fs::path(a.outDir) / name, renderer.tracer().readImage(), s.exposure,
-                        s.tonemap);
+      image::writeImage(fs::path(a.outDir) / name, shownImage(), s.exposure, s.tonemap);
     }
     progress.update(f + 1, "frame " + std::to_string(f + 1) + " of " + std::to_string(frameCount));
   }
@@ -98,8 +118,7 @@ int runHeadless(const DemoArgs& a, const CommonOptions& common) {
     stats["q_non_finite"] = q.nonFinite;
   }
   session::writeJson(fs::path(a.outDir) / "stats.json", stats);
-  image::writeImage(fs::path(a.outDir) / "final.png", renderer.tracer().readImage(), s.exposure,
-                    s.tonemap);
+  image::writeImage(fs::path(a.outDir) / "final.png", shownImage(), s.exposure, s.tonemap);
   std::printf(
       "qlight demo: %u frames of %s at %ux%u in %.2f s (%.1f ms/frame, %.2f Mrays/s); "
       "images and stats.json in %s\n",
@@ -160,10 +179,12 @@ std::function<int()> addDemoCommand(CLI::App& app, const CommonOptions& common) 
   cmd->add_flag("--show-cache-points", args->showCachePoints,
                 "window: draw the cache points over the image from the start (panel: Guiding)");
   cmd->add_option("--reuse-history", args->reuseHistory,
-                  "window: reproject the last frame while the camera moves, on|off (display only)")
+                  "window: reproject the last frame while the camera moves, on|off (display "
+                  "only; headless: given, the PNG frames go through it)")
       ->transform(CLI::CheckedTransformer(onOffWords(), CLI::ignore_case));
   cmd->add_option("--denoise", args->denoise,
-                  "window: edge-aware a-trous denoiser, on|off (display only)")
+                  "window: edge-aware a-trous denoiser, on|off (display only; headless: given, "
+                  "the PNG frames go through it)")
       ->transform(CLI::CheckedTransformer(onOffWords(), CLI::ignore_case));
   cmd->add_option("--inspect-at", args->inspectAt,
                   "window: show the learned Q at this window pixel X Y instead of the cursor's")
@@ -192,6 +213,7 @@ std::function<int()> addDemoCommand(CLI::App& app, const CommonOptions& common) 
     args->window = file.window;
     finishGuidingOptions(args->guidingCli, args->guiding, args->settings);
     for (const std::string& step : *script) args->script.push_back(parseScriptStep(step));
+    args->filterHeadless = cmd->count("--denoise") > 0 || cmd->count("--reuse-history") > 0;
     // A bad path file is one error line before any device or window starts.
     if (!args->cameraPathFile.empty()) {
       args->cameraPath = loadCameraPath(args->cameraPathFile);

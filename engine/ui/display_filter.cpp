@@ -95,4 +95,18 @@ const gpu::Image& DisplayFilter::output() const {
   return denoisedLast_ ? *filtered_[lastFiltered_] : *outputs_[1 - current_];
 }
 
+image::LinearImage DisplayFilter::readOutput() const {
+  const gpu::Image& sums = output();
+  image::LinearImage img;
+  img.width = sums.width();
+  img.height = sums.height();
+  img.rgba = sums.readFloats(ctx_);
+  for (size_t i = 0; i < img.rgba.size(); i += 4) {
+    const float n = img.rgba[i + 3];
+    for (int c = 0; c < 3; ++c) img.rgba[i + c] = n > 0.0f ? img.rgba[i + c] / n : 0.0f;
+    img.rgba[i + 3] = 1.0f;
+  }
+  return img;
+}
+
 }  // namespace qlight::ui

@@ -12,6 +12,7 @@
 #include "engine/gpu/compute_pipeline.h"
 #include "engine/gpu/image.h"
 #include "engine/gpu/pass_recorder.h"
+#include "engine/image/image_io.h"
 #include "engine/render/gpu_scene.h"
 #include "engine/render/scene_draw.h"
 
@@ -37,6 +38,9 @@ class DisplayFilter {
               const gpu::Image& accumulation, float keptOfPrevious,
               const render::CameraView& camera, const DisplayFilterSettings& settings);
   const gpu::Image& output() const;
+  // The output's mean radiance per pixel (waits for the GPU): the headless demo's filtered
+  // frames when the user asks for them.
+  image::LinearImage readOutput() const;
 
  private:
   void resize(uint32_t width, uint32_t height);

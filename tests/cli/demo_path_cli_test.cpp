@@ -185,5 +185,38 @@ TEST(DemoPathCli, GltfCameraPlaysTheScenesOwnAnimatedCamera) {
   expectOnlyTheLastFrameMoved(dir / "out");
 }
 
+// Mean absolute difference between horizontally neighbouring pixels of a PNG: its noise.
+double roughness(const fs::path& file) {
+  int w = 0, h = 0, n = 0;
+  unsigned char* p = stbi_load(file.c_str(), &w, &h, &n, 3);
+  if (!p) return -1.0;
+  double sum = 0.0;
+  for (int y = 0; y < h; ++y)
+    for (int x = 1; x < w; ++x)
+      for (int c = 0; c < 3; ++c)
+        sum += std::abs(int(p[(y * w + x) * 3 + c]) - int(p[(y * w + x - 1) * 3 + c]));
+  stbi_image_free(p);
+  return sum / (double(w - 1) * h * 3);
+}
+
+// The headless demo filters its PNG frames only when asked (--denoise on): the filtered
+// final image is far smoother, and what was traced (rays, stats) is the same run.
+TEST(DemoCli, HeadlessDenoiseFiltersOnlyThePngs) {
+  const fs::path dir = tempDir("demo_denoise");
+  const std::string base = "demo --headless --scene " + asset("cornell_box.gltf") +
+                           " --frames 6 --width 64 --height 48 --out ";
+  RunResult raw = runQlight(base + (dir / "raw").string());
+  RunResult denoised = runQlight(base + (dir / "denoised").string() + " --denoise on");
+  ASSERT_EQ(raw.exitCode, 0) << raw.output;
+  ASSERT_EQ(denoised.exitCode, 0) << denoised.output;
+  const double rough = roughness(dir / "raw" / "final.png");
+  const double smooth = roughness(dir / "denoised" / "final.png");
+  EXPECT_LT(smooth, 0.5 * rough) << "raw " << rough << ", denoised " << smooth;
+  auto rays = [](const fs::path& stats) {
+    return nlohmann::json::parse(std::ifstream(stats)).at("rays").get<uint64_t>();
+  };
+  EXPECT_EQ(rays(dir / "raw" / "stats.json"), rays(dir / "denoised" / "stats.json"));
+}
+
 }  // namespace
 }  // namespace qlight::test
