@@ -5,6 +5,7 @@
 
 #include <algorithm>
 #include <fstream>
+#include <iterator>
 #include <nlohmann/json.hpp>
 
 #define STB_IMAGE_STATIC
@@ -85,15 +86,41 @@ TEST(DemoPathCli, RendersEveryFrameOfThePathNumbered) {
   expectOnlyTheLastFrameMoved(out);
 }
 
+// The MP4 goes through ffmpeg: a stand-in on PATH records what qlight asks of it (every
+// frame, at the path's fps, H.264 in yuv420p, into out/flythrough.mp4), so this runs
+// whether or not ffmpeg is installed; where it is, the real one encodes the same frames.
 TEST(DemoPathCli, WritesAnMp4OfTheFramesWithFfmpeg) {
-  if (!ffmpegInstalled()) GTEST_SKIP() << "ffmpeg is not installed (it is optional)";
   const fs::path dir = tempDir("demo_mp4");
   const fs::path path = writeFile(dir / "path.json", stillThenMovedPath());
-  const RunResult r = runQlight(demoAlong(path, dir / "out"));
+  fs::create_directories(dir / "bin");
+  const fs::path stub = writeFile(dir / "bin" / "ffmpeg",
+                                  "#!/bin/sh\n"
+                                  "echo \"$@\" > \"" +
+                                      (dir / "ffmpeg_args.txt").string() +
+                                      "\"\n"
+                                      "for last; do :; done\n"
+                                      "echo mp4 > \"$last\"\n");
+  fs::permissions(stub, fs::perms::owner_all);
+  const RunResult r = runCommand("PATH=" + (dir / "bin").string() + ":$PATH QLIGHT_VALIDATION=1 " +
+                                 std::string(QLIGHT_BINARY) + " " + demoAlong(path, dir / "out"));
   ASSERT_EQ(r.exitCode, 0) << r.output;
-  ASSERT_TRUE(fs::exists(dir / "out" / "flythrough.mp4")) << r.output;
-  EXPECT_GT(fs::file_size(dir / "out" / "flythrough.mp4"), 0u);
+  const fs::path mp4 = dir / "out" / "flythrough.mp4";
+  ASSERT_TRUE(fs::exists(mp4)) << r.output;
+  std::ifstream argsFile(dir / "ffmpeg_args.txt");
+  const std::string args((std::istreambuf_iterator<char>(argsFile)),
+                         std::istreambuf_iterator<char>());
+  for (const std::string& wanted :
+       {std::string("-framerate 2 "), std::string("-frames:v 3 "), std::string("/frame_%04d.png"),
+        std::string("-c:v libx264"), std::string("-pix_fmt yuv420p"), mp4.string()})
+    EXPECT_NE(args.find(wanted), std::string::npos) << wanted << " not in: " << args;
   EXPECT_FALSE(fs::exists(dir / "out" / "ffmpeg.log")) << "kept only when ffmpeg fails";
+
+  if (ffmpegInstalled()) {  // the real encoder on the same frames
+    const RunResult real = runQlight(demoAlong(path, dir / "real"));
+    ASSERT_EQ(real.exitCode, 0) << real.output;
+    EXPECT_GT(fs::file_size(dir / "real" / "flythrough.mp4"), 100u) << real.output;
+    EXPECT_FALSE(fs::exists(dir / "real" / "ffmpeg.log")) << "kept only when ffmpeg fails";
+  }
 }
 
 TEST(DemoPathCli, WithoutFfmpegOneLineSaysTheMp4WasSkipped) {
