@@ -73,19 +73,26 @@ void refreshBounds(SceneAsset& scene) {
   scene.bounds = worldBounds(scene, worldTransforms(scene, animate(scene, 0.0f)));
 }
 
+namespace {
+// Appends `item` and returns its index, as a node refers to it.
+template <class T>
+int32_t append(std::vector<T>& items, T item) {
+  items.push_back(std::move(item));
+  return int32_t(items.size() - 1);
+}
+}  // namespace
+
 uint32_t addMeshAtOrigin(SceneAsset& scene, MeshAsset mesh) {
-  scene.meshes.push_back(std::move(mesh));
   NodeAsset node;
-  node.mesh = int32_t(scene.meshes.size() - 1);
+  node.mesh = append(scene.meshes, std::move(mesh));
   return addNode(scene, node);
 }
 
 uint32_t addCameraNode(SceneAsset& scene, float yfov, glm::vec3 position, glm::quat rotation) {
   CameraAsset camera;
   camera.yfov = yfov;
-  scene.cameras.push_back(camera);
   NodeAsset node;
-  node.camera = int32_t(scene.cameras.size() - 1);
+  node.camera = append(scene.cameras, camera);
   node.local.translation = position;
   node.local.rotation = rotation;
   return addNode(scene, node);
@@ -94,9 +101,8 @@ uint32_t addCameraNode(SceneAsset& scene, float yfov, glm::vec3 position, glm::q
 uint32_t addPointLightNode(SceneAsset& scene, float intensity, glm::vec3 position) {
   LightAsset light;
   light.intensity = intensity;
-  scene.lights.push_back(light);
   NodeAsset node;
-  node.light = int32_t(scene.lights.size() - 1);
+  node.light = append(scene.lights, light);
   node.local.translation = position;
   return addNode(scene, node);
 }
