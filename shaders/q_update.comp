@@ -39,10 +39,10 @@ void main() {
   if (targets == 0u && pc.everyRow == 0u) return;
   // Tracking: the row's counts age by the forgetting clock's advance since it was last updated
   // (a row without targets is not touched, so it ages when it is next used).
-  float age = pc.clock - rowClocks[row];
+  float kept = keptAfter(pc.clock - rowClocks[row]);
   rowClocks[row] = pc.clock;
   if (pc.cosineWeights != 0u)
-    pointUpdates[row] = agedCount(pointUpdates[row], age) + targets;
+    pointUpdates[row] = agedCount(pointUpdates[row], kept) + targets;
 
   // The update; then the sampling weights: a stratum's Q shrunk toward the mean of the
   // row's visited strata (never visited: the mean itself), so an unexplored direction is as
@@ -53,7 +53,7 @@ void main() {
   for (uint k = 0u; k < length; ++k) {
     uint e = base + k;
     uint m = counts[e];
-    uint n = agedCount(visits[e], age);
+    uint n = agedCount(visits[e], kept);
     float q = values[e];
     if (m == 0u && n != visits[e]) visits[e] = n;
     if (m > 0u) {

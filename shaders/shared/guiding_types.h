@@ -148,11 +148,11 @@ QL_FN float retainedAfterUpdates(uint n0, uint m, float alphaMin, float alphaMax
 
 // One entry's update from a frame's m targets summing to targetSum. A
 // non-finite result keeps the old value: NaN or Inf never enters a table.
-// What a row keeps of its visit counts (and its point's confidence) after the forgetting
-// clock advanced `halvings` since its last update.
-QL_FN uint agedCount(uint count, float halvings) {
-  if (!(halvings > 0.0f)) return count;
-  return uint(float(count) * exp2(-halvings));
+// The share of its visit counts (and its point's confidence) a row keeps after the forgetting
+// clock advanced `halvings` since its last update, and a count after it.
+QL_FN float keptAfter(float halvings) { return halvings > 0.0f ? exp2(-halvings) : 1.0f; }
+QL_FN uint agedCount(uint count, float kept) {
+  return kept < 1.0f ? uint(float(count) * kept) : count;
 }
 
 // How far a point's learned distribution can be trusted: 0 without updates, 1 after
