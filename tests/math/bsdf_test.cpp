@@ -1,6 +1,6 @@
 // The glTF metallic-roughness BSDF: GGX normalisation, VNDF sampling, the
 // mixed sampler's pdf (integrates to 1, samples follow it), reciprocity,
-// albedos (closed forms, energy <= 1) and the sample weight.
+// albedos (the specification's model, energy <= 1) and the sample weight.
 #include "shaders/shared/bsdf.h"
 
 #include <gtest/gtest.h>
@@ -10,6 +10,7 @@
 #include <vector>
 
 #include "sphere_quadrature.h"
+#include "tests/support/gltf_reference_brdf.h"
 #include "stats_support.h"
 
 namespace qlight::shared {
@@ -273,19 +274,65 @@ TEST(Lambert, AlbedoIntegratesToBaseColor) {
   }
 }
 
-TEST(Bsdf, DiffuseLobeAlbedoMatchesClosedForm) {
+// The fit behind bsdfDiffuseAlbedo stays within 1e-4 of the diffuse lobe's
+// integrated albedo (the fit's own error is 9e-5 of the Schlick weight).
+TEST(Bsdf, DiffuseLobeAlbedoMatchesItsFit) {
   SphereGrid grid = SphereGrid::uniform(0, kPiD / 2);
   for (float metallic : {0.0f, 0.5f})
     for (double thetaDeg : kThetaOs) {
       BsdfParams p = params(0.5f, metallic);
       vec3 wo = outgoing(thetaDeg);
-      vec3 closedForm = bsdfDiffuseAlbedo(p, wo.z);
+      vec3 fitted = bsdfDiffuseAlbedo(p, wo.z);
       for (int c = 0; c < 3; ++c) {
         auto r = integrateWithError(
             grid, [&](vec3 wi) { return bsdfEvalDiffuse(p, wo, wi)[c] * wi.z; }, 256);
-        EXPECT_QUADRATURE_NEAR(r, closedForm[c], label(0.5f, metallic, thetaDeg));
+        EXPECT_LT(r.errorEstimate, 1e-3) << label(0.5f, metallic, thetaDeg);
+        EXPECT_NEAR(r.value, fitted[c], 1e-4 + kFloatFloor + 3.0 * r.errorEstimate)
+            << label(0.5f, metallic, thetaDeg);
       }
     }
+}
+
+double gltfReferenceBrdf(double base, double metallic, double roughness, vec3 wo, vec3 wi) {
+  return test::gltfReferenceBrdf(base, metallic, roughness, {wo.x, wo.y, wo.z},
+                                 {wi.x, wi.y, wi.z});
+}
+
+TEST(Bsdf, IsTheGltfSpecificationModel) {
+  TestRandom rnd(29);
+  for (float roughness : {0.05f, 0.3f, 0.6f, 1.0f})
+    for (float metallic : kMetallics)
+      for (float base : {0.1f, 0.5f, 1.0f}) {
+        BsdfParams p = params(roughness, metallic, vec3(base));
+        for (int i = 0; i < 2000; ++i) {
+          vec3 wo = sampleUniformHemisphere(rnd.next2());
+          vec3 wi = sampleUniformHemisphere(rnd.next2());
+          double expected = gltfReferenceBrdf(base, metallic, roughness, wo, wi);
+          ASSERT_NEAR(bsdfEval(p, wo, wi).x, expected, 2e-4 * expected + 1e-6)
+              << label(roughness, metallic, 0) << ", base " << base;
+        }
+      }
+}
+
+// The figure: a rough dielectric of base colour 0.5 in a closed
+// furnace of emission 1 has radiance ~1 / (1 - a) with a its albedo. The
+// specification's model reflects ~0.49 (a furnace near 1.98); the earlier
+// (1 - F(wo))(1 - F(wi)) diffuse lobe reflected ~0.44 (1.80).
+TEST(Bsdf, RoughDielectricAlbedoIsTheSpecifications) {
+  for (double thetaDeg : {0.0, 45.0, 75.0}) {
+    vec3 wo = outgoing(thetaDeg);
+    auto ours = integrateWithError(
+        mirrorGrid(wo, 1.0f, 0, kPiD / 2),
+        [&](vec3 wi) { return bsdfEval(params(1.0f, 0.0f, vec3(0.5f)), wo, wi).x * wi.z; },
+        kQuadN);
+    auto reference = integrateWithError(
+        mirrorGrid(wo, 1.0f, 0, kPiD / 2),
+        [&](vec3 wi) { return float(gltfReferenceBrdf(0.5, 0.0, 1.0, wo, wi) * wi.z); }, kQuadN);
+    EXPECT_NEAR(ours.value, reference.value,
+                kFloatFloor + 3.0 * (ours.errorEstimate + reference.errorEstimate))
+        << "theta_o " << thetaDeg;
+    EXPECT_GT(ours.value, 0.47) << "theta_o " << thetaDeg;
+  }
 }
 
 // For a white metal (F = 1), int f cos dwi over wi equals the visible-normal
@@ -322,11 +369,18 @@ TEST(Bsdf, SpecularAlbedoMatchesVisibleNormalExpectation) {
     }
 }
 
-// Energy sanity: a white surface never reflects more than it receives.
-TEST(Bsdf, WhiteAlbedoIsAtMostOne) {
+// Energy: a white metal never reflects more than it receives, nor does a
+// white dielectric seen within 30 degrees of its normal. Nearer grazing the
+// specification's model reflects more than 1 (its diffuse weight 1 - F(wo.h)
+// stays near 0.96 while the specular layer's Fresnel nears 1): a smooth white
+// dielectric reflects 1.0004 at 45 degrees, 1.03 at 60, 1.35 at 80 and 1.77
+// at 88, which
+// Bsdf.IsTheGltfSpecificationModel shows is the reference's own behaviour.
+TEST(Bsdf, WhiteAlbedoIsAtMostOneForMetalsAndAwayFromGrazing) {
   for (float roughness : kRoughnesses)
     for (float metallic : kMetallics)
       for (double thetaDeg : kThetaOs) {
+        if (metallic < 1.0f && thetaDeg > 30.0) continue;
         BsdfParams p = params(roughness, metallic, vec3(1.0f));
         vec3 wo = outgoing(thetaDeg);
         auto r = integrateWithError(
@@ -348,9 +402,11 @@ TEST(Bsdf, LobeProbabilityFollowsAlbedos) {
   vec3 wo = outgoing(0.0);
   EXPECT_FLOAT_EQ(bsdfSpecularProbability(params(0.5f, 1.0f), wo), 1.0f);  // metal: no diffuse
   float pDielectric = bsdfSpecularProbability(params(0.5f, 0.0f, vec3(1.0f)), wo);
-  EXPECT_NEAR(pDielectric, 0.04 / (0.04 + 0.96 * 0.96 * 20.0 / 21.0), 1e-5);
-  // Grazing: Fresnel takes over.
-  EXPECT_GT(bsdfSpecularProbability(params(0.5f, 0.0f), outgoing(89.0)), 0.9f);
+  // Normal incidence: specular 0.04, diffuse 1 - (0.04 + 0.96 * 8.2e-5) (the
+  // Schlick weight's cosine-weighted mean is 8.2e-5 there).
+  EXPECT_NEAR(pDielectric, 0.04 / (0.04 + 1.0 - (0.04 + 0.96 * 8.2e-5)), 1e-5);
+  // Grazing: Fresnel's share grows.
+  EXPECT_GT(bsdfSpecularProbability(params(0.5f, 0.0f), outgoing(89.0)), 0.5f);
 }
 
 }  // namespace
