@@ -10,8 +10,8 @@
 #include <vector>
 
 #include "sphere_quadrature.h"
-#include "tests/support/gltf_reference_brdf.h"
 #include "stats_support.h"
+#include "tests/support/gltf_reference_brdf.h"
 
 namespace qlight::shared {
 namespace {
@@ -294,8 +294,7 @@ TEST(Bsdf, DiffuseLobeAlbedoMatchesItsFit) {
 }
 
 double gltfReferenceBrdf(double base, double metallic, double roughness, vec3 wo, vec3 wi) {
-  return test::gltfReferenceBrdf(base, metallic, roughness, {wo.x, wo.y, wo.z},
-                                 {wi.x, wi.y, wi.z});
+  return test::gltfReferenceBrdf(base, metallic, roughness, {wo.x, wo.y, wo.z}, {wi.x, wi.y, wi.z});
 }
 
 TEST(Bsdf, IsTheGltfSpecificationModel) {
@@ -323,8 +322,7 @@ TEST(Bsdf, RoughDielectricAlbedoIsTheSpecifications) {
     vec3 wo = outgoing(thetaDeg);
     auto ours = integrateWithError(
         mirrorGrid(wo, 1.0f, 0, kPiD / 2),
-        [&](vec3 wi) { return bsdfEval(params(1.0f, 0.0f, vec3(0.5f)), wo, wi).x * wi.z; },
-        kQuadN);
+        [&](vec3 wi) { return bsdfEval(params(1.0f, 0.0f, vec3(0.5f)), wo, wi).x * wi.z; }, kQuadN);
     auto reference = integrateWithError(
         mirrorGrid(wo, 1.0f, 0, kPiD / 2),
         [&](vec3 wi) { return float(gltfReferenceBrdf(0.5, 0.0, 1.0, wo, wi) * wi.z); }, kQuadN);
