@@ -114,11 +114,12 @@ vec3 addEmission(inout PathState st, Surface s, Switches sw) {
   if (le != vec3(0.0)) {
     float w = 1.0;
     if (pc.bounce > 0u) {
-      if (!sw.emitterHits) w = 0.0;
+      uint li = triangleAt(s.triangle).light;
+      // Emitters outside the light list (unlit surfaces) are found by scattered rays only.
+      if (li == kNoLight) w = 1.0;
+      else if (!sw.emitterHits) w = 0.0;
       else if (sw.mis) {
-        uint li = triangleAt(s.triangle).light;
-        float lightPdf = li == kNoLight ? 0.0
-                       : triangleLightPdf(lights[li], lightSelectionPdf(st.prevPoint, li), st.dir,
+        float lightPdf = triangleLightPdf(lights[li], lightSelectionPdf(st.prevPoint, li), st.dir,
                                           st.hitT * length(st.dir));
         w = powerHeuristic(1.0, st.prevScatterPdf, 1.0, lightPdf);
       }
@@ -283,6 +284,22 @@ void enqueueSurvivor(uint path, uint flags) {
     queueOut[atomicAdd(queues[(pc.bounce + 1u) & 1u].count, 1u)] = path;
 }
 
+// The hit as a scattering vertex: its cache point, NEE and the next direction.
+// Returns whether the path goes on.
+bool scatterAt(inout PathState st, inout Rng rng, uint path, Surface s, vec3 le, Switches sw) {
+  Vertex v = scatteringVertex(s, st.dir);
+  uint point = lookupCachePoint(st, path, v, le, sw);
+  if (pc.bounce >= frame.maxDepth) return false;
+  // D&K's path length: vertices up to the first emitter reached.
+  if ((st.flags & kPathEmitterHit) == 0u) st.vertices++;
+  ScatterMix m = scatterMix(point, v, sw);
+  vec3 p = offsetRayOriginFrom(s.position, s.geometricNormal, s.extent);
+  if (sw.nee) sampleDirectLight(st, rng, v, m, p, sw.mis);
+  bool alive = sampleScatter(st, rng, v, m, p, sw.learn);
+  if (alive) alive = survivesRoulette(st, rng);
+  return alive;
+}
+
 void main() {
   uint path = queuedPath(gl_GlobalInvocationID.x);
   if (path == kNoPath) return;
@@ -299,16 +316,11 @@ void main() {
   } else {
     Surface s = hitSurface(st);
     vec3 le = addEmission(st, s, sw);
-    Vertex v = scatteringVertex(s, st.dir);
-    uint point = lookupCachePoint(st, path, v, le, sw);
-    if (pc.bounce < frame.maxDepth) {
-      // D&K's path length: vertices up to the first emitter reached.
-      if ((st.flags & kPathEmitterHit) == 0u) st.vertices++;
-      ScatterMix m = scatterMix(point, v, sw);
-      vec3 p = offsetRayOriginFrom(s.position, s.geometricNormal, s.extent);
-      if (sw.nee) sampleDirectLight(st, rng, v, m, p, sw.mis);
-      alive = sampleScatter(st, rng, v, m, p, sw.learn);
-      if (alive) alive = survivesRoulette(st, rng);
+    if (materialUnlit(materialAt(s.material))) {
+      // KHR_materials_unlit: emission only, nothing scatters; the path ends.
+      if (kUseGuiding && sw.learn && !sw.returns) recordQTarget(st.prevEntry, luminance(le));
+    } else {
+      alive = scatterAt(st, rng, path, s, le, sw);
     }
   }
   st.flags = alive ? (st.flags | kPathAlive) : (st.flags & ~kPathAlive);

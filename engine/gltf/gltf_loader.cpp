@@ -7,6 +7,7 @@
 #include "engine/gltf/gltf_convert.h"
 #include "engine/gltf/gltf_file_check.h"
 #include "engine/scene/animation.h"
+#include "engine/scene/tangents.h"
 #include "engine/scene/transforms.h"
 
 namespace qlight::gltf {
@@ -61,6 +62,7 @@ SceneAsset convertCheckedFile(const detail::CheckedGltfFile& file,
   detail::convertMaterials(model, scene, ctx);
   detail::convertTextures(model, scene, ctx);
   detail::convertMeshes(model, scene, ctx);
+  qlight::scene::generateMissingTangents(scene);  // for normal maps, where the file has no TANGENT
   detail::convertNodes(model, scene, ctx);
   detail::convertCameras(model, scene, ctx);
   detail::convertLights(model, scene, ctx);

@@ -6,18 +6,60 @@
 namespace qlight::gltf::detail {
 namespace {
 
-int32_t textureRef(const tinygltf::Model& model, const tinygltf::TextureInfo& info,
-                   const std::string& owner, LoadContext& ctx) {
-  if (info.index < 0) return -1;
-  if (size_t(info.index) >= model.textures.size())
-    ctx.fail(owner + " uses texture " + std::to_string(info.index) + ", which does not exist (" +
+double numberOr(const tinygltf::Value& object, const char* key, double fallback,
+                const std::string& what, LoadContext& ctx) {
+  if (!object.Has(key)) return fallback;
+  const tinygltf::Value& v = object.Get(key);
+  if (!v.IsNumber()) ctx.fail(what + " " + key + " is not a number");
+  const double x = v.GetNumberAsDouble();
+  ctx.requireFinite(x, what + " " + key);
+  return x;
+}
+
+glm::vec2 vec2Or(const tinygltf::Value& object, const char* key, glm::vec2 fallback,
+                 const std::string& what, LoadContext& ctx) {
+  if (!object.Has(key)) return fallback;
+  const tinygltf::Value& v = object.Get(key);
+  if (!v.IsArray() || v.ArrayLen() != 2 || !v.Get(0).IsNumber() || !v.Get(1).IsNumber())
+    ctx.fail(what + " " + key + " needs 2 numbers");
+  glm::vec2 out(float(v.Get(0).GetNumberAsDouble()), float(v.Get(1).GetNumberAsDouble()));
+  ctx.requireFinite(out.x, what + " " + key);
+  ctx.requireFinite(out.y, what + " " + key);
+  return out;
+}
+
+// A texture reference with its UV set and KHR_texture_transform (whose texCoord, when
+// given, overrides the reference's).
+TextureBinding textureBinding(const tinygltf::Model& model, int index, int texCoord,
+                              const tinygltf::ExtensionMap& extensions, const std::string& owner,
+                              LoadContext& ctx) {
+  TextureBinding b;
+  if (index < 0) return b;
+  if (size_t(index) >= model.textures.size())
+    ctx.fail(owner + " uses texture " + std::to_string(index) + ", which does not exist (" +
              std::to_string(model.textures.size()) + " textures)");
-  if (info.texCoord != 0)
-    ctx.warn(owner + " reads TEXCOORD_" + std::to_string(info.texCoord) +
-             "; only TEXCOORD_0 is loaded, so TEXCOORD_0 is used");
-  if (info.extensions.count("KHR_texture_transform"))
-    ctx.warn(owner + " has KHR_texture_transform, which is ignored");
-  return info.index;
+  b.index = index;
+  auto it = extensions.find("KHR_texture_transform");
+  if (it != extensions.end() && it->second.IsObject()) {
+    const tinygltf::Value& t = it->second;
+    const std::string what = owner + " KHR_texture_transform";
+    b.offset = vec2Or(t, "offset", b.offset, what, ctx);
+    b.rotation = float(numberOr(t, "rotation", 0.0, what, ctx));
+    b.scale = vec2Or(t, "scale", b.scale, what, ctx);
+    texCoord = int(numberOr(t, "texCoord", texCoord, what, ctx));
+  }
+  if (texCoord == 0 || texCoord == 1) {
+    b.texCoord = uint32_t(texCoord);
+  } else {
+    ctx.warn(owner + " reads TEXCOORD_" + std::to_string(texCoord) +
+             "; only TEXCOORD_0 and TEXCOORD_1 are loaded, so TEXCOORD_0 is used");
+  }
+  return b;
+}
+
+TextureBinding textureBinding(const tinygltf::Model& model, const tinygltf::TextureInfo& info,
+                              const std::string& owner, LoadContext& ctx) {
+  return textureBinding(model, info.index, info.texCoord, info.extensions, owner, ctx);
 }
 
 float unitFactor(double value, const std::string& what, LoadContext& ctx) {
@@ -136,9 +178,9 @@ void convertMaterials(const tinygltf::Model& model, SceneAsset& scene, LoadConte
     out.metallicFactor = unitFactor(pbr.metallicFactor, owner + " metallicFactor", ctx);
     out.roughnessFactor = unitFactor(pbr.roughnessFactor, owner + " roughnessFactor", ctx);
     out.baseColorTexture =
-        textureRef(model, pbr.baseColorTexture, owner + " baseColorTexture", ctx);
-    out.metallicRoughnessTexture =
-        textureRef(model, pbr.metallicRoughnessTexture, owner + " metallicRoughnessTexture", ctx);
+        textureBinding(model, pbr.baseColorTexture, owner + " baseColorTexture", ctx);
+    out.metallicRoughnessTexture = textureBinding(model, pbr.metallicRoughnessTexture,
+                                                  owner + " metallicRoughnessTexture", ctx);
 
     if (!m.emissiveFactor.empty() && m.emissiveFactor.size() != 3)
       ctx.fail(owner + " emissiveFactor needs 3 numbers");
@@ -146,14 +188,18 @@ void convertMaterials(const tinygltf::Model& model, SceneAsset& scene, LoadConte
     for (size_t c = 0; c < m.emissiveFactor.size(); ++c)
       out.emissive[int(c)] =
           unitFactor(m.emissiveFactor[c], owner + " emissiveFactor", ctx) * strength;
-    out.emissiveTexture = textureRef(model, m.emissiveTexture, owner + " emissiveTexture", ctx);
+    out.emissiveTexture = textureBinding(model, m.emissiveTexture, owner + " emissiveTexture", ctx);
 
     out.specularFactor = specularFactorOf(m, owner, ctx);
     out.doubleSided = m.doubleSided;
     out.alphaMode = alphaModeOf(m.alphaMode, owner, ctx);
     ctx.requireFinite(m.alphaCutoff, owner + " alphaCutoff");
     out.alphaCutoff = float(m.alphaCutoff);
-    if (m.normalTexture.index >= 0) ctx.warn(owner + " normalTexture is ignored");
+    out.normalTexture = textureBinding(model, m.normalTexture.index, m.normalTexture.texCoord,
+                                       m.normalTexture.extensions, owner + " normalTexture", ctx);
+    ctx.requireFinite(m.normalTexture.scale, owner + " normalTexture scale");
+    out.normalScale = float(m.normalTexture.scale);
+    out.unlit = m.extensions.count("KHR_materials_unlit") > 0;
     scene.materials.push_back(out);
   }
 }
@@ -162,9 +208,10 @@ void convertTextures(const tinygltf::Model& model, SceneAsset& scene, LoadContex
   // A texture is sRGB when some material reads it as color (baseColor, emissive).
   std::vector<int> colorUses(model.textures.size(), 0), dataUses(model.textures.size(), 0);
   for (const MaterialAsset& m : scene.materials) {
-    if (m.baseColorTexture >= 0) ++colorUses[size_t(m.baseColorTexture)];
-    if (m.emissiveTexture >= 0) ++colorUses[size_t(m.emissiveTexture)];
-    if (m.metallicRoughnessTexture >= 0) ++dataUses[size_t(m.metallicRoughnessTexture)];
+    if (m.baseColorTexture.present()) ++colorUses[size_t(m.baseColorTexture.index)];
+    if (m.emissiveTexture.present()) ++colorUses[size_t(m.emissiveTexture.index)];
+    if (m.metallicRoughnessTexture.present()) ++dataUses[size_t(m.metallicRoughnessTexture.index)];
+    if (m.normalTexture.present()) ++dataUses[size_t(m.normalTexture.index)];
   }
 
   for (size_t i = 0; i < model.textures.size(); ++i) {

@@ -15,6 +15,9 @@ struct PrimitiveData {
   std::vector<glm::vec3> positions;
   std::vector<glm::vec3> normals;  // empty: generate flat normals
   std::vector<glm::vec2> uv0;
+  std::vector<glm::vec2> uv1;  // empty: none (as the next two)
+  std::vector<glm::vec4> colors;
+  std::vector<glm::vec4> tangents;
   std::vector<uint32_t> triangles;  // 3 per triangle
 };
 
@@ -32,6 +35,61 @@ std::vector<glm::vec3> readVec3Attribute(const tinygltf::Model& model, int acces
     ctx.fail(use + " has " + std::to_string(values.size()) + " elements but POSITION has " +
              std::to_string(vertexCount));
   return values;
+}
+
+std::vector<float> readSized(const tinygltf::Model& model, int accessor, FloatAccessorRule rule,
+                             size_t vertexCount, const std::string& use, LoadContext& ctx) {
+  std::vector<float> values = readFloatAccessor(model, accessor, rule, use, ctx);
+  if (values.size() / size_t(rule.components) != vertexCount)
+    ctx.fail(use + " has " + std::to_string(values.size() / size_t(rule.components)) +
+             " elements but POSITION has " + std::to_string(vertexCount));
+  return values;
+}
+
+std::vector<glm::vec2> readUvAttribute(const tinygltf::Model& model, int accessor,
+                                       size_t vertexCount, const std::string& use,
+                                       LoadContext& ctx) {
+  const std::vector<float> f = readSized(model, accessor, {2, true}, vertexCount, use, ctx);
+  std::vector<glm::vec2> out(vertexCount);
+  for (size_t i = 0; i < vertexCount; ++i) out[i] = {f[2 * i], f[2 * i + 1]};
+  return out;
+}
+
+// COLOR_0: VEC3 or VEC4, float or normalized integers; RGB gets alpha 1.
+std::vector<glm::vec4> readColorAttribute(const tinygltf::Model& model, int accessor,
+                                          size_t vertexCount, const std::string& use,
+                                          LoadContext& ctx) {
+  accessorCount(model, accessor, use, ctx);
+  const int n = model.accessors[size_t(accessor)].type == TINYGLTF_TYPE_VEC3 ? 3 : 4;
+  const std::vector<float> f = readSized(model, accessor, {n, true}, vertexCount, use, ctx);
+  std::vector<glm::vec4> out(vertexCount, glm::vec4(1.0f));
+  for (size_t i = 0; i < vertexCount; ++i)
+    for (int c = 0; c < n; ++c) out[i][c] = f[size_t(n) * i + size_t(c)];
+  return out;
+}
+
+// TANGENT: VEC4 floats, xyz the tangent, w the bitangent's sign.
+std::vector<glm::vec4> readTangentAttribute(const tinygltf::Model& model, int accessor,
+                                            size_t vertexCount, const std::string& use,
+                                            LoadContext& ctx) {
+  const std::vector<float> f = readSized(model, accessor, {4, false}, vertexCount, use, ctx);
+  std::vector<glm::vec4> out(vertexCount);
+  for (size_t i = 0; i < vertexCount; ++i)
+    out[i] = {f[4 * i], f[4 * i + 1], f[4 * i + 2], f[4 * i + 3] < 0.0f ? -1.0f : 1.0f};
+  return out;
+}
+
+// Appends a primitive's optional attribute to the mesh's, keeping it either empty or one
+// per vertex: the side that lacks it gets `fill`.
+template <class T>
+void appendOptional(std::vector<T>& mesh, size_t meshVertices, const std::vector<T>& prim,
+                    size_t primVertices, T fill) {
+  if (mesh.empty() && prim.empty()) return;
+  mesh.resize(meshVertices, fill);
+  if (prim.empty())
+    mesh.insert(mesh.end(), primVertices, fill);
+  else
+    mesh.insert(mesh.end(), prim.begin(), prim.end());
 }
 
 glm::vec3 faceNormal(glm::vec3 a, glm::vec3 b, glm::vec3 c) {
@@ -134,13 +192,16 @@ void makeFlat(PrimitiveData& data) {
       flat.positions.push_back(data.positions[k]);
       flat.normals.push_back(n);
       flat.uv0.push_back(data.uv0[k]);
+      if (!data.uv1.empty()) flat.uv1.push_back(data.uv1[k]);
+      if (!data.colors.empty()) flat.colors.push_back(data.colors[k]);
+      if (!data.tangents.empty()) flat.tangents.push_back(data.tangents[k]);
     }
   }
   data = std::move(flat);
 }
 
 struct VertexKey {
-  int position, normal, uv;
+  int position, normal, uv, uv1, color, tangent;
   friend auto operator<=>(const VertexKey&, const VertexKey&) = default;
 };
 
@@ -198,12 +259,13 @@ void convertMeshes(const tinygltf::Model& model, SceneAsset& scene, LoadContext&
         if (name == "NORMAL") {
           data.normals = readVec3Attribute(model, accessor, vertexCount, use, ctx);
         } else if (name == "TEXCOORD_0") {
-          const std::vector<float> uv = readFloatAccessor(model, accessor, {2, true}, use, ctx);
-          if (uv.size() / 2 != vertexCount)
-            ctx.fail(use + " has " + std::to_string(uv.size() / 2) + " elements but POSITION has " +
-                     std::to_string(vertexCount));
-          data.uv0.resize(vertexCount);
-          for (size_t i = 0; i < vertexCount; ++i) data.uv0[i] = {uv[2 * i], uv[2 * i + 1]};
+          data.uv0 = readUvAttribute(model, accessor, vertexCount, use, ctx);
+        } else if (name == "TEXCOORD_1") {
+          data.uv1 = readUvAttribute(model, accessor, vertexCount, use, ctx);
+        } else if (name == "COLOR_0") {
+          data.colors = readColorAttribute(model, accessor, vertexCount, use, ctx);
+        } else if (name == "TANGENT") {
+          data.tangents = readTangentAttribute(model, accessor, vertexCount, use, ctx);
         } else if (name != "POSITION") {
           checkAccessorBounds(model, accessor, use, ctx);
         }
@@ -242,8 +304,9 @@ void convertMeshes(const tinygltf::Model& model, SceneAsset& scene, LoadContext&
 
       // Primitives that share their vertex accessors (a common exporter layout: one vertex
       // set, one index range per material) share their vertices here too.
-      const VertexKey key{attributeOf(prim, "POSITION"), attributeOf(prim, "NORMAL"),
-                          attributeOf(prim, "TEXCOORD_0")};
+      const VertexKey key{attributeOf(prim, "POSITION"),   attributeOf(prim, "NORMAL"),
+                          attributeOf(prim, "TEXCOORD_0"), attributeOf(prim, "TEXCOORD_1"),
+                          attributeOf(prim, "COLOR_0"),    attributeOf(prim, "TANGENT")};
       const bool shareable = key.normal >= 0 && prim.targets.empty();
       auto shared = shareable ? sharedVertices.find(key) : sharedVertices.end();
       uint32_t base;
@@ -256,6 +319,10 @@ void convertMeshes(const tinygltf::Model& model, SceneAsset& scene, LoadContext&
           normalizeNormals(data);
         }
         base = uint32_t(out.positions.size());
+        const size_t added = data.positions.size();
+        appendOptional(out.uv1, base, data.uv1, added, glm::vec2(0.0f));
+        appendOptional(out.colors, base, data.colors, added, glm::vec4(1.0f));
+        appendOptional(out.tangents, base, data.tangents, added, glm::vec4(0.0f));
         out.positions.insert(out.positions.end(), data.positions.begin(), data.positions.end());
         out.normals.insert(out.normals.end(), data.normals.begin(), data.normals.end());
         out.uv0.insert(out.uv0.end(), data.uv0.begin(), data.uv0.end());

@@ -6,6 +6,7 @@
 #include <cstring>
 #include <stdexcept>
 
+#include "engine/render/scene_packing.h"
 #include "shaders/shared/sampling.h"
 
 namespace qlight::render {
@@ -15,25 +16,10 @@ using shared::GpuLight;
 using shared::GpuMaterial;
 using shared::GpuTexture;
 using shared::GpuTriangle;
-using shared::GpuVertex;
 
 constexpr float kPi = 3.14159265358979f;
 
 float luminance(glm::vec3 c) { return glm::dot(c, glm::vec3(0.2126f, 0.7152f, 0.0722f)); }
-
-GpuMaterial toGpu(const scene::MaterialAsset& m) {
-  GpuMaterial g{};
-  g.baseColor = m.baseColorFactor;
-  g.emissive = m.emissive;
-  g.metallic = m.metallicFactor;
-  g.roughness = m.roughnessFactor;
-  g.baseColorTexture = float(m.baseColorTexture);
-  g.metallicRoughnessTexture = float(m.metallicRoughnessTexture);
-  g.emissiveTexture = float(m.emissiveTexture);
-  g.flags = float(m.doubleSided ? shared::kMaterialDoubleSided : 0u);
-  g.specular = m.specularFactor;
-  return g;
-}
 
 uint32_t textureFlags(const scene::TextureAsset& t) {
   uint32_t f = t.srgb ? shared::kTextureSrgb : 0u;
@@ -66,30 +52,30 @@ GpuScene::GpuScene(const gpu::Context& ctx, const scene::SceneAsset& asset,
 }
 
 void GpuScene::uploadStatic() {
-  std::vector<GpuVertex> vertices;
-  for (const scene::MeshAsset& mesh : asset_.meshes) {
-    meshFirstVertex_.push_back(uint32_t(vertices.size()));
+  PackedVertices vertices = packVertices(asset_.meshes);
+  meshFirstVertex_ = vertices.firstVertex;
+  hasVertexExtras_ = vertices.anyExtras;
+  for (size_t m = 0; m < asset_.meshes.size(); ++m) {
+    const scene::MeshAsset& mesh = asset_.meshes[m];
     meshFirstTriangle_.push_back(uint32_t(triangles_.size()));
-    for (size_t i = 0; i < mesh.positions.size(); ++i)
-      vertices.push_back({mesh.positions[i], mesh.uv0[i].x, mesh.normals[i], mesh.uv0[i].y});
     for (size_t t = 0; t < mesh.triangleCount(); ++t) {
       GpuTriangle tri{};
-      tri.v0 = meshFirstVertex_.back() + mesh.indices[t * 3];
-      tri.v1 = meshFirstVertex_.back() + mesh.indices[t * 3 + 1];
-      tri.v2 = meshFirstVertex_.back() + mesh.indices[t * 3 + 2];
+      tri.v0 = meshFirstVertex_[m] + mesh.indices[t * 3];
+      tri.v1 = meshFirstVertex_[m] + mesh.indices[t * 3 + 1];
+      tri.v2 = meshFirstVertex_[m] + mesh.indices[t * 3 + 2];
       tri.material = mesh.triangleMaterials[t];
       tri.light = shared::kNoLight;
+      tri.vertexExtras = vertices.extrasTexel[m];
       triangles_.push_back(tri);
     }
   }
   triangleCount_ = uint32_t(triangles_.size());
   std::vector<GpuMaterial> materials;
   for (auto& m : asset_.materials) {
-    materials.push_back(toGpu(m));
-    hasTextures_ |=
-        m.baseColorTexture >= 0 || m.metallicRoughnessTexture >= 0 || m.emissiveTexture >= 0;
+    materials.push_back(packMaterial(m));
+    hasTextures_ |= usesTextures(m);
   }
-  if (materials.empty()) materials.push_back(toGpu(scene::MaterialAsset{}));
+  if (materials.empty()) materials.push_back(packMaterial(scene::MaterialAsset{}));
 
   // Refused before anything is allocated: all textures share one texel buffer.
   uint64_t texelCount = 0;
@@ -111,7 +97,7 @@ void GpuScene::uploadStatic() {
   if (textures.empty()) textures.push_back({0, 1, 1, 0});
 
   constexpr VkBufferUsageFlags texel = VK_BUFFER_USAGE_UNIFORM_TEXEL_BUFFER_BIT;
-  vertices_ = makeBuffer(ctx_, vertices, "scene.vertices", texel);
+  vertices_ = makeBuffer(ctx_, vertices.texels, "scene.vertices", texel);
   materials_ = makeBuffer(ctx_, materials, "scene.materials", texel);
   verticesView_ =
       std::make_unique<gpu::BufferView>(ctx_, *vertices_, VK_FORMAT_R32G32B32A32_SFLOAT);
@@ -225,6 +211,8 @@ void GpuScene::update(const SceneDraw& draw) {
     for (int r = 0; r < 3; ++r)
       inst.normalFromObject[r] = glm::vec4(n[0][r], n[1][r], n[2][r], 0.0f);
     const glm::mat3 m(d.worldFromObject);
+    for (int r = 0; r < 3; ++r)
+      inst.tangentFromObject[r] = glm::vec4(m[0][r], m[1][r], m[2][r], 0.0f);
     inst.worldScale = std::max(std::max(glm::length(m[0]), glm::length(m[1])), glm::length(m[2]));
     inst.firstTriangle = meshFirstTriangle_[d.mesh];
     inst.mesh = d.mesh;

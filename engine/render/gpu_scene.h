@@ -39,6 +39,7 @@ class GpuScene {
   float surfaceArea() const { return surfaceArea_; }
   // Features the path tracing passes are specialized on.
   bool hasTextures() const { return hasTextures_; }
+  bool hasVertexExtras() const { return hasVertexExtras_; }  // TEXCOORD_1, COLOR_0, tangents
   bool hasNonTriangleLights() const {
     return hasNonTriangleLights_;
   }  // world space, of the last update
@@ -69,6 +70,7 @@ class GpuScene {
   float radius_ = 1.0f;
   float surfaceArea_ = 0.0f;
   bool hasTextures_ = false;
+  bool hasVertexExtras_ = false;
   bool hasNonTriangleLights_ = false;
 
   std::unique_ptr<gpu::Buffer> vertices_, triangleBuffer_, materials_, textures_, texels_;

@@ -18,11 +18,16 @@ namespace qlight::scene {
 // positions/normals/uv0 always have the same length; uv0 is (0,0) where the file has no
 // TEXCOORD_0. Normals missing in the file are generated flat (the glTF spec asks for flat
 // normals): such a primitive is un-indexed so each triangle owns its three vertices.
+// uv1, colors and tangents are either empty or one per position (a primitive without them
+// gets (0,0), white and a generated tangent).
 struct MeshAsset {
   std::string name;
   std::vector<glm::vec3> positions;
   std::vector<glm::vec3> normals;  // unit length
   std::vector<glm::vec2> uv0;
+  std::vector<glm::vec2> uv1;               // TEXCOORD_1
+  std::vector<glm::vec4> colors;            // COLOR_0, linear RGBA (RGB files: alpha 1)
+  std::vector<glm::vec4> tangents;          // xyz unit, w = +-1 (bitangent = w * cross(n, t))
   std::vector<uint32_t> indices;            // 3 per triangle, each < positions.size()
   std::vector<uint32_t> triangleMaterials;  // 1 per triangle, index into SceneAsset::materials
   glm::vec3 boundsMin{0.0f};                // object space, over all positions
@@ -33,19 +38,34 @@ struct MeshAsset {
 
 enum class AlphaMode : uint8_t { Opaque, Mask, Blend };
 
-// glTF metallic-roughness material. Texture fields index SceneAsset::textures (-1: none);
-// every texture is read with TEXCOORD_0 (a texCoord other than 0 is ignored with a warning).
+// How a material reads one texture: its UV set and KHR_texture_transform, applied as
+// uv' = T(offset) R(rotation) S(scale) uv (the extension's order and sign of rotation).
+struct TextureBinding {
+  int32_t index = -1;     // into SceneAsset::textures; -1: none
+  uint32_t texCoord = 0;  // TEXCOORD_0 or TEXCOORD_1
+  glm::vec2 offset{0.0f};
+  float rotation = 0.0f;  // radians
+  glm::vec2 scale{1.0f};
+
+  bool present() const { return index >= 0; }
+};
+
+// glTF metallic-roughness material. Textures index SceneAsset::textures.
 struct MaterialAsset {
   std::string name;
   glm::vec4 baseColorFactor{1.0f};  // linear RGBA
-  int32_t baseColorTexture = -1;    // sRGB
+  TextureBinding baseColorTexture;  // sRGB
   float metallicFactor = 1.0f;
   float roughnessFactor = 1.0f;
-  int32_t metallicRoughnessTexture = -1;  // linear; G = roughness, B = metallic
+  TextureBinding metallicRoughnessTexture;  // linear; G = roughness, B = metallic
   // emissiveFactor x KHR_materials_emissive_strength: linear radiance, multiplied by the
   // emissive texture when there is one.
   glm::vec3 emissive{0.0f};
-  int32_t emissiveTexture = -1;  // sRGB
+  TextureBinding emissiveTexture;  // sRGB
+  TextureBinding normalTexture;    // tangent-space normals, linear
+  float normalScale = 1.0f;        // scales the map's x and y
+  // KHR_materials_unlit: the surface shows its base colour as emission and scatters nothing.
+  bool unlit = false;
   // KHR_materials_specular specularFactor: weight of the dielectric specular layer. 0 with
   // metallic 0 makes an exactly Lambertian surface (the generated scenes use it).
   float specularFactor = 1.0f;
@@ -53,7 +73,10 @@ struct MaterialAsset {
   AlphaMode alphaMode = AlphaMode::Opaque;
   float alphaCutoff = 0.5f;
 
-  bool isEmissive() const { return emissive.x > 0.0f || emissive.y > 0.0f || emissive.z > 0.0f; }
+  // Emitters in the light list: unlit surfaces emit their base colour but are not lights.
+  bool isEmissive() const {
+    return !unlit && (emissive.x > 0.0f || emissive.y > 0.0f || emissive.z > 0.0f);
+  }
 };
 
 enum class TextureWrap : uint8_t { Repeat, ClampToEdge, MirroredRepeat };

@@ -37,11 +37,16 @@ vec3 triangleLightNormal(GpuLight l) {
 
 // Emission of an emissive triangle at barycentrics (b1, b2), texture included.
 vec3 triangleLightRadiance(GpuLight l, vec2 b) {
+  if (!kUseTextures) return l.emission;
   GpuTriangle tri = triangleAt(l.triangle);
-  int texture = int(materialAt(tri.material).emissiveTexture);
-  if (texture < 0) return l.emission;
-  vec2 uv = (1.0 - b.x - b.y) * vertexUv(tri.v0) + b.x * vertexUv(tri.v1) + b.y * vertexUv(tri.v2);
-  return l.emission * sampleTexture(texture, uv).rgb;
+  vec3 w = vec3(1.0 - b.x - b.y, b.x, b.y);
+  vec2 uv0 = w.x * vertexUv(tri.v0) + w.y * vertexUv(tri.v1) + w.z * vertexUv(tri.v2);
+  vec2 uv1 = vec2(0.0);
+  if (kUseVertexExtras && tri.vertexExtras != kNoVertexExtras)
+    uv1 = w.x * vertexExtrasAt(tri.vertexExtras, tri.v0).uv1 +
+          w.y * vertexExtrasAt(tri.vertexExtras, tri.v1).uv1 +
+          w.z * vertexExtrasAt(tri.vertexExtras, tri.v2).uv1;
+  return l.emission * sampleMaterialTexture(tri.material, kTextureSlotEmissive, uv0, uv1).rgb;
 }
 
 // Solid-angle pdf of sampling direction `dir` toward a point on triangle light `l`

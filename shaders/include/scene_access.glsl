@@ -19,13 +19,15 @@ layout(binding = QL_BIND_TEXELS) uniform usamplerBuffer uTexels;
 
 GpuTriangle triangleAt(uint i) {
   uvec4 a = texelFetch(uTriangles, int(2u * i));
+  uvec4 b = texelFetch(uTriangles, int(2u * i + 1u));
   GpuTriangle t;
   t.v0 = a.x;
   t.v1 = a.y;
   t.v2 = a.z;
   t.material = a.w;
-  t.light = texelFetch(uTriangles, int(2u * i + 1u)).x;
-  t.pad0 = t.pad1 = t.pad2 = 0u;
+  t.light = b.x;
+  t.vertexExtras = b.y;
+  t.pad1 = t.pad2 = 0u;
   return t;
 }
 
@@ -40,15 +42,26 @@ GpuVertex vertexAt(uint i) {
   return v;
 }
 
+GpuVertexExtras vertexExtrasAt(uint extrasTexel, uint i) {
+  int at = int(extrasTexel + kVertexExtrasTexels * i);
+  GpuVertexExtras e;
+  e.tangent = texelFetch(uVertices, at);
+  e.color = texelFetch(uVertices, at + 1);
+  e.uv1 = texelFetch(uVertices, at + 2).xy;
+  e.pad = vec2(0.0);
+  return e;
+}
+
 vec2 vertexUv(uint i) {
   return vec2(texelFetch(uVertices, int(2u * i)).w, texelFetch(uVertices, int(2u * i + 1u)).w);
 }
 
+// The factors only; a texture slot's view is read by textureViewAt when it is used.
 GpuMaterial materialAt(uint i) {
-  vec4 a = texelFetch(uMaterials, int(4u * i));
-  vec4 b = texelFetch(uMaterials, int(4u * i + 1u));
-  vec4 c = texelFetch(uMaterials, int(4u * i + 2u));
-  vec4 d = texelFetch(uMaterials, int(4u * i + 3u));
+  int at = int(kMaterialTexels * i);
+  vec4 a = texelFetch(uMaterials, at);
+  vec4 b = texelFetch(uMaterials, at + 1);
+  vec4 c = texelFetch(uMaterials, at + 2);
   GpuMaterial m;
   m.baseColor = a;
   m.emissive = b.xyz;
@@ -56,19 +69,28 @@ GpuMaterial materialAt(uint i) {
   m.roughness = c.x;
   m.specular = c.y;
   m.flags = c.z;
-  m.pad0 = 0.0;
-  m.baseColorTexture = d.x;
-  m.metallicRoughnessTexture = d.y;
-  m.emissiveTexture = d.z;
-  m.pad1 = 0.0;
+  m.normalScale = c.w;
   return m;
 }
+
+GpuTextureView textureViewAt(uint material, uint slot) {
+  int at = int(kMaterialTexels * material + kMaterialFactorTexels + 2u * slot);
+  GpuTextureView v;
+  v.uRow = texelFetch(uMaterials, at);
+  v.vRow = texelFetch(uMaterials, at + 1);
+  return v;
+}
+
+bool materialUnlit(GpuMaterial m) { return (uint(m.flags) & kMaterialUnlit) != 0u; }
 
 struct Surface {
   vec3 position;
   vec3 geometricNormal;  // unit, facing the incoming ray
-  vec3 shadingNormal;    // unit, same side as geometricNormal
-  vec2 uv;
+  vec3 shadingNormal;    // unit, same side as geometricNormal (normal map applied)
+  vec2 uv0;
+  vec2 uv1;
+  vec4 color;    // COLOR_0, white without
+  vec4 tangent;  // world xyz (not unit), w = +-1; w = 0: none
   uint material;
   uint triangle;   // GpuTriangle index
   float extent;    // the largest magnitude the hit was computed from (ray offsets)
@@ -89,8 +111,7 @@ vec4 texel(GpuTexture t, int x, int y) {
 }
 
 // Bilinear (or nearest) lookup without mipmaps; linear values.
-vec4 sampleTexture(int index, vec2 uv) {
-  if (!kUseTextures || index < 0) return vec4(1.0);
+vec4 sampleTextureAt(int index, vec2 uv) {
   GpuTexture t = textures[index];
   vec2 p = uv * vec2(t.width, t.height) - 0.5;
   if ((t.flags & kTextureNearest) != 0u) return texel(t, int(floor(p.x + 0.5)), int(floor(p.y + 0.5)));
@@ -100,9 +121,45 @@ vec4 sampleTexture(int index, vec2 uv) {
              mix(texel(t, i.x, i.y + 1), texel(t, i.x + 1, i.y + 1), f.x), f.y);
 }
 
+// A material's texture slot at UV sets (uv0, uv1), through its KHR_texture_transform;
+// white when the slot has no texture.
+vec4 sampleMaterialTexture(uint material, uint slot, vec2 uv0, vec2 uv1) {
+  if (!kUseTextures) return vec4(1.0);
+  GpuTextureView v = textureViewAt(material, slot);
+  int index = int(v.vRow.w);
+  if (index < 0) return vec4(1.0);
+  vec2 uv = v.uRow.w > 0.5 ? uv1 : uv0;
+  uv = vec2(dot(v.uRow.xy, uv) + v.uRow.z, dot(v.vRow.xy, uv) + v.vRow.z);
+  return sampleTextureAt(index, uv);
+}
+
+vec4 surfaceTexture(Surface s, uint slot) {
+  return sampleMaterialTexture(s.material, slot, s.uv0, s.uv1);
+}
+
 vec3 toWorldNormal(GpuInstance inst, vec3 n) {
   return vec3(dot(inst.normalFromObject[0].xyz, n), dot(inst.normalFromObject[1].xyz, n),
               dot(inst.normalFromObject[2].xyz, n));
+}
+
+vec3 toWorldTangent(GpuInstance inst, vec3 t) {
+  return vec3(dot(inst.tangentFromObject[0].xyz, t), dot(inst.tangentFromObject[1].xyz, t),
+              dot(inst.tangentFromObject[2].xyz, t));
+}
+
+// The normal map's normal, n and t in world space (t may be unnormalized). Falls back to
+// n where the frame is degenerate.
+vec3 normalMapped(Surface s, vec3 n) {
+  vec3 t = s.tangent.xyz - n * dot(n, s.tangent.xyz);
+  float tLength = length(t);
+  if (!(tLength > 1e-8)) return n;
+  t /= tLength;
+  vec3 b = cross(n, t) * s.tangent.w;
+  vec3 m = surfaceTexture(s, kTextureSlotNormal).xyz * 2.0 - 1.0;
+  float scale = materialAt(s.material).normalScale;
+  vec3 mapped = m.x * scale * t + m.y * scale * b + m.z * n;
+  float mappedLength = length(mapped);
+  return mappedLength > 1e-8 && !isnan(mappedLength) ? mapped / mappedLength : n;
 }
 
 Surface resolveSurface(BvhHit hit, vec3 origin, vec3 dir) {
@@ -117,13 +174,26 @@ Surface resolveSurface(BvhHit hit, vec3 origin, vec3 dir) {
   vec3 m = max(max(abs(a.position), abs(b.position)), abs(c.position));
   vec3 o = abs(origin);
   s.extent = max(max(m.x, max(m.y, m.z)) * inst.worldScale, max(o.x, max(o.y, o.z)));
-  s.uv = w * vec2(a.u, a.v) + hit.u * vec2(b.u, b.v) + hit.v * vec2(c.u, c.v);
+  s.uv0 = w * vec2(a.u, a.v) + hit.u * vec2(b.u, b.v) + hit.v * vec2(c.u, c.v);
+  s.uv1 = vec2(0.0);
+  s.color = vec4(1.0);
+  s.tangent = vec4(0.0);
+  if (kUseVertexExtras && tri.vertexExtras != kNoVertexExtras) {
+    GpuVertexExtras ea = vertexExtrasAt(tri.vertexExtras, tri.v0);
+    GpuVertexExtras eb = vertexExtrasAt(tri.vertexExtras, tri.v1);
+    GpuVertexExtras ec = vertexExtrasAt(tri.vertexExtras, tri.v2);
+    s.uv1 = w * ea.uv1 + hit.u * eb.uv1 + hit.v * ec.uv1;
+    s.color = w * ea.color + hit.u * eb.color + hit.v * ec.color;
+    vec3 t = w * ea.tangent.xyz + hit.u * eb.tangent.xyz + hit.v * ec.tangent.xyz;
+    s.tangent = vec4(toWorldTangent(inst, t), ea.tangent.w < 0.0 ? -1.0 : 1.0);
+  }
   s.material = tri.material;
   // M^-T (e1 x e2) is the world normal of the glTF front face, mirrored transforms included.
   vec3 ng = normalize(toWorldNormal(inst, cross(b.position - a.position, c.position - a.position)));
   vec3 ns = toWorldNormal(inst, w * a.normal + hit.u * b.normal + hit.v * c.normal);
   float nsLength = length(ns);
   ns = nsLength > 1e-8 && !isnan(nsLength) ? ns / nsLength : ng;
+  if (kUseTextures && kUseVertexExtras && s.tangent.w != 0.0) ns = normalMapped(s, ns);
   s.frontFace = dot(ng, dir) < 0.0;
   if (!s.frontFace) ng = -ng;
   if (dot(ns, ng) < 0.0) ns = -ns;
@@ -132,11 +202,16 @@ Surface resolveSurface(BvhHit hit, vec3 origin, vec3 dir) {
   return s;
 }
 
+// Base colour times COLOR_0 and the base colour texture, alpha included.
+vec4 surfaceBaseColor(Surface s, GpuMaterial m) {
+  return m.baseColor * s.color * surfaceTexture(s, kTextureSlotBaseColor);
+}
+
 BsdfParams surfaceBsdf(Surface s) {
   GpuMaterial m = materialAt(s.material);
   BsdfParams p;
-  p.baseColor = m.baseColor.rgb * sampleTexture(int(m.baseColorTexture), s.uv).rgb;
-  vec4 mr = sampleTexture(int(m.metallicRoughnessTexture), s.uv);
+  p.baseColor = surfaceBaseColor(s, m).rgb;
+  vec4 mr = surfaceTexture(s, kTextureSlotMetallicRoughness);
   p.metallic = clamp(m.metallic * mr.b, 0.0, 1.0);
   p.roughness = clamp(m.roughness * mr.g, 0.0, 1.0);
   p.specular = clamp(m.specular, 0.0, 1.0);
@@ -144,9 +219,11 @@ BsdfParams surfaceBsdf(Surface s) {
 }
 
 // Radiance leaving the surface toward the ray origin: front side only unless double-sided.
+// Unlit materials show their base colour (KHR_materials_unlit).
 vec3 surfaceEmission(Surface s) {
   GpuMaterial m = materialAt(s.material);
   if (!s.frontFace && (uint(m.flags) & kMaterialDoubleSided) == 0u) return vec3(0.0);
+  if (materialUnlit(m)) return surfaceBaseColor(s, m).rgb;
   if (m.emissive == vec3(0.0)) return vec3(0.0);
-  return m.emissive * sampleTexture(int(m.emissiveTexture), s.uv).rgb;
+  return m.emissive * surfaceTexture(s, kTextureSlotEmissive).rgb;
 }

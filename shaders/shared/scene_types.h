@@ -18,10 +18,14 @@ struct GpuTriangle {
   uint v0, v1, v2;  // indices into the vertex array (already offset per mesh)
   uint material;
   uint light;  // index into the light list when emissive, else kNoLight
-  uint pad0, pad1, pad2;
+  // Texel of vertex v's GpuVertexExtras is vertexExtras + 3 v (mod 2^32: the mesh's extras
+  // start minus 3 x its first vertex), kNoVertexExtras when its mesh has none.
+  uint vertexExtras;
+  uint pad1, pad2;
 };
 QL_CHECK_SIZE(GpuTriangle, 32);
 QL_CONST uint kNoLight = 0xffffffffu;
+QL_CONST uint kNoVertexExtras = 0xffffffffu;
 
 // Two RGBA32F texels: (position, u), (normal, v), object space.
 struct GpuVertex {
@@ -32,19 +36,47 @@ struct GpuVertex {
 };
 QL_CHECK_SIZE(GpuVertex, 32);
 
-// Per BVH instance: where its mesh's triangles start and how to move normals to world space.
+// The optional attributes of a mesh's vertices (TEXCOORD_1, COLOR_0, TANGENT): three
+// RGBA32F texels in the vertex buffer after all GpuVertex entries, only for meshes that
+// have one of them.
+struct GpuVertexExtras {
+  vec4 tangent;  // object space xyz, w = +-1; (0,0,0,0): none
+  vec4 color;    // linear RGBA, white when the file has none
+  vec2 uv1;
+  vec2 pad;
+};
+QL_CHECK_SIZE(GpuVertexExtras, 48);
+QL_CONST uint kVertexExtrasTexels = 3u;
+
+// Per BVH instance: where its mesh's triangles start and how to move normals and tangents
+// to world space.
 struct GpuInstance {
-  vec4 normalFromObject[3];  // rows of transpose(inverse(M)) (xyz), w unused
+  vec4 normalFromObject[3];   // rows of transpose(inverse(M)) (xyz), w unused
+  vec4 tangentFromObject[3];  // rows of M's linear part (xyz), w unused
   uint firstTriangle;
   uint mesh;
   float worldScale;  // the longest image of a unit axis under M: world size of object units
   uint pad1;
 };
-QL_CHECK_SIZE(GpuInstance, 64);
+QL_CHECK_SIZE(GpuInstance, 112);
 
 QL_CONST uint kMaterialDoubleSided = 1u;
+QL_CONST uint kMaterialUnlit = 2u;  // KHR_materials_unlit: emits its base colour, scatters nothing
 
-// Four RGBA32F texels.
+// How a material reads one texture (KHR_texture_transform as a 2x3 matrix):
+// uv' = (a u + b v + offsetU, c u + d v + offsetV) on UV set texCoord.
+struct GpuTextureView {
+  vec4 uRow;  // a, b, offsetU, texCoord (0 or 1)
+  vec4 vRow;  // c, d, offsetV, texture index as a float value (-1: none)
+};
+QL_CHECK_SIZE(GpuTextureView, 32);
+QL_CONST uint kTextureSlotBaseColor = 0u;
+QL_CONST uint kTextureSlotMetallicRoughness = 1u;
+QL_CONST uint kTextureSlotEmissive = 2u;
+QL_CONST uint kTextureSlotNormal = 3u;
+QL_CONST uint kTextureSlots = 4u;
+
+// Eleven RGBA32F texels: three of factors, then a GpuTextureView per slot.
 struct GpuMaterial {
   vec4 baseColor;  // linear RGBA
   vec3 emissive;   // linear radiance (factor x strength)
@@ -52,13 +84,12 @@ struct GpuMaterial {
   float roughness;
   float specular;  // KHR_materials_specular specularFactor (1 = plain glTF)
   float flags;     // kMaterial* bits, as a float value
-  float pad0;
-  float baseColorTexture;  // texture index as a float value, -1: none
-  float metallicRoughnessTexture;
-  float emissiveTexture;
-  float pad1;
+  float normalScale;
+  GpuTextureView textures[kTextureSlots];
 };
-QL_CHECK_SIZE(GpuMaterial, 64);
+QL_CHECK_SIZE(GpuMaterial, 176);
+QL_CONST uint kMaterialTexels = 11u;
+QL_CONST uint kMaterialFactorTexels = 3u;
 
 // Textures live in one uint texel buffer (RGBA8 packed), each at an offset.
 QL_CONST uint kTextureSrgb = 1u;

@@ -135,7 +135,7 @@ TEST(GltfSamples, BoxTexturedHasA211x211SrgbTexture) {
   EXPECT_TRUE(t.srgb);
   EXPECT_EQ(t.wrapS, TextureWrap::Repeat);
   ASSERT_EQ(scene.materials.size(), 1u);
-  EXPECT_EQ(scene.materials[0].baseColorTexture, 0);
+  EXPECT_EQ(scene.materials[0].baseColorTexture.index, 0);
   // TEXCOORD_0 is read: its range is the accessor's min/max in the file, [0, 0] to [6, 1].
   glm::vec2 lo(1e9f), hi(-1e9f);
   for (const glm::vec2& uv : scene.meshes[0].uv0) {

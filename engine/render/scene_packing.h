@@ -1,0 +1,26 @@
+// Scene data in the GPU layouts of shaders/shared/scene_types.h: materials with their
+// texture views, and vertices with the optional attributes of the meshes that have them.
+#pragma once
+#include <glm/glm.hpp>
+#include <vector>
+
+#include "engine/scene/scene_asset.h"
+#include "shaders/shared/scene_types.h"
+
+namespace qlight::render {
+
+shared::GpuMaterial packMaterial(const scene::MaterialAsset& m);
+bool usesTextures(const scene::MaterialAsset& m);
+
+// The vertex texel buffer: every mesh's GpuVertex entries, then the GpuVertexExtras of the
+// meshes with TEXCOORD_1, COLOR_0 or tangents. firstVertex[i] is mesh i's first vertex,
+// extrasTexel[i] the GpuTriangle::vertexExtras value of its triangles.
+struct PackedVertices {
+  std::vector<glm::vec4> texels;
+  std::vector<uint32_t> firstVertex;
+  std::vector<uint32_t> extrasTexel;
+  bool anyExtras = false;
+};
+PackedVertices packVertices(const std::vector<scene::MeshAsset>& meshes);
+
+}  // namespace qlight::render
