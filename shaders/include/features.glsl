@@ -8,3 +8,5 @@ layout(constant_id = QL_SPEC_USE_GUIDING) const bool kUseGuiding = true;
 layout(constant_id = QL_SPEC_USE_LIGHT_LEARNING) const bool kUseLightLearning = true;
 // Punctual, directional and sky lights (else triangles only).
 layout(constant_id = QL_SPEC_USE_NON_TRIANGLE_LIGHTS) const bool kUseNonTriangleLights = true;
+// The sky is an environment map (shared/environment.h), else uniform.
+layout(constant_id = QL_SPEC_USE_ENVIRONMENT_MAP) const bool kUseEnvironmentMap = true;

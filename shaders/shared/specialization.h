@@ -12,13 +12,15 @@
 #define QL_SPEC_USE_GUIDING 4
 #define QL_SPEC_USE_LIGHT_LEARNING 5
 #define QL_SPEC_USE_NON_TRIANGLE_LIGHTS 6
+#define QL_SPEC_USE_ENVIRONMENT_MAP 7
 
 QL_BEGIN
 QL_CONST uint kSpecUseTextures = QL_SPEC_USE_TEXTURES;
 QL_CONST uint kSpecUseGuiding = QL_SPEC_USE_GUIDING;
 QL_CONST uint kSpecUseLightLearning = QL_SPEC_USE_LIGHT_LEARNING;
 QL_CONST uint kSpecUseNonTriangleLights = QL_SPEC_USE_NON_TRIANGLE_LIGHTS;
-QL_CONST uint kSpecPathFeatureCount = QL_SPEC_USE_NON_TRIANGLE_LIGHTS + 1u;  // values to pass
+QL_CONST uint kSpecUseEnvironmentMap = QL_SPEC_USE_ENVIRONMENT_MAP;
+QL_CONST uint kSpecPathFeatureCount = QL_SPEC_USE_ENVIRONMENT_MAP + 1u;  // values to pass
 QL_END
 
 #endif
