@@ -3,6 +3,7 @@
 #include <cmath>
 #include <cstdio>
 
+#include "game/environment_choice.h"
 #include "game/setting_words.h"
 #include "game/settings_file.h"
 
@@ -92,6 +93,34 @@ void finishGuidingOptions(const GuidingCli& cli, guiding::GuidingSettings& g,
     r.estimator = render::Estimator::Mis;
   g.seed = r.seed;
   guiding::validate(g);
+}
+
+void addEnvironmentOptions(CLI::App& app, EnvironmentSettings& env, std::string& skyText) {
+  CLI::Option* file = app.add_option(
+      "--env", env.file,
+      "environment map: equirectangular .hdr or .exr, lighting the scene with its emitters");
+  app.add_option("--sky", skyText, "uniform sky radiance R,G,B instead of a map (e.g. 1,1,1)")
+      ->check(CLI::Validator(
+          [](std::string& text) -> std::string {
+            return parseSkyColor(text) ? "" : "not three numbers R,G,B in [0, 1e6]: " + text;
+          },
+          "R,G,B"))
+      ->excludes(file);
+  app.add_option("--env-strength", env.strength, "multiplies the environment map or sky")
+      ->check(finiteRange(ranges::kEnvStrength));
+  app.add_option("--env-rotation", env.rotationDegrees,
+                 "turns the environment map about +Y, in degrees (right-handed)")
+      ->check(finiteRange(ranges::kEnvRotation));
+}
+
+void finishEnvironmentOptions(const CLI::App& cmd, const std::string& skyText,
+                              EnvironmentSettings& env) {
+  if (cmd.count("--sky") > 0) {
+    env.sky = parseSkyColor(skyText);
+    env.file.clear();
+  } else if (cmd.count("--env") > 0) {
+    env.sky.reset();
+  }
 }
 
 void addSettingsOption(CLI::App& app, std::string& file) {

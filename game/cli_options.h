@@ -37,6 +37,14 @@ CLI::Validator finiteRange(double lowest, double highest);
 CLI::Validator finiteRange(Range range);
 CLI::Validator wholeRange(Range range);  // integers within the range
 
+// Adds --env FILE, --sky R,G,B (exclusive), --env-strength S, --env-rotation DEG.
+// `skyText` holds --sky's text until finishEnvironmentOptions parses it.
+void addEnvironmentOptions(CLI::App& app, EnvironmentSettings& env, std::string& skyText);
+// After the settings file: --sky's colour, and a map or sky given on the command line replaces
+// both of the file's ("file" and "sky").
+void finishEnvironmentOptions(const CLI::App& cmd, const std::string& skyText,
+                              EnvironmentSettings& env);
+
 // Adds --settings FILE (game/settings_file.h).
 void addSettingsOption(CLI::App& app, std::string& file);
 // After parsing: applies the settings file, when one was given, to the settings whose

@@ -17,6 +17,7 @@
 #include "game/context_setup.h"
 #include "game/demo_timeline.h"
 #include "game/demo_window.h"
+#include "game/environment_choice.h"
 #include "game/frame_video.h"
 #include "game/process_memory.h"
 #include "game/progress_bar.h"
@@ -46,9 +47,12 @@ void writeVideo(const DemoArgs& a, const DemoTimeline& timeline) {
 
 int runHeadless(const DemoArgs& a, const CommonOptions& common) {
   scene::SceneAsset asset = gltf::loadGltf(resolveScene(a.scene));
+  attachEnvironment(asset, a.environment);
   auto ctx = createContext(common, false);
   const render::RenderSettings& s = a.settings;
   session::Renderer renderer(*ctx, asset, s, a.guiding);
+  reportSceneLighting(renderer.scene().usesFallbackSky(), renderer.scene().hasEnvironment(), asset,
+                      a.scene);
   const DemoTimeline timeline(a, renderer.world().camera(), asset.bounds.radius());
   const uint32_t frameCount = timeline.frames();
 
@@ -203,14 +207,17 @@ std::function<int()> addDemoCommand(CLI::App& app, const CommonOptions& common) 
   args->guiding.forgetOnLightMove = kDemoForgetOnLightMove;
   addRenderOptions(*cmd, args->settings);
   addGuidingOptions(*cmd, args->guiding, args->guidingCli);
+  addEnvironmentOptions(*cmd, args->environment, args->skyText);
   addSettingsOption(*cmd, args->settingsFile);
   return [cmd, args, script, &common]() -> int {
     if (!cmd->parsed()) return -1;
-    Settings file{args->settings, args->guiding, args->window};
+    Settings file{args->settings, args->guiding, args->window, args->environment};
     applySettingsFile(*cmd, args->settingsFile, file);
     args->settings = file.render;
     args->guiding = file.guiding;
     args->window = file.window;
+    args->environment = file.environment;
+    finishEnvironmentOptions(*cmd, args->skyText, args->environment);
     finishGuidingOptions(args->guidingCli, args->guiding, args->settings);
     for (const std::string& step : *script) args->script.push_back(parseScriptStep(step));
     args->filterHeadless = cmd->count("--denoise") > 0 || cmd->count("--reuse-history") > 0;

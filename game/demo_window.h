@@ -29,6 +29,8 @@ struct DemoArgs {
   render::RenderSettings settings;
   guiding::GuidingSettings guiding;  // Q-learned guiding (on by default)
   GuidingCli guidingCli;
+  EnvironmentSettings environment;  // --env, --sky: read when the scene loads
+  std::string skyText;              // --sky's text
   // Window mode: the render is the window's size times window.renderScale (a smaller
   // render keeps a software rasterizer interactive); settings.width/height are unused.
   uint32_t windowWidth = 960;

@@ -8,6 +8,7 @@
 #include "engine/session/offline_render.h"
 #include "engine/session/stats_json.h"
 #include "game/context_setup.h"
+#include "game/environment_choice.h"
 #include "game/progress_bar.h"
 
 namespace qlight::game {
@@ -23,12 +24,15 @@ struct RenderArgs {
   render::RenderSettings settings;  // samplesPerFrame: --batch
   guiding::GuidingSettings guiding;
   GuidingCli guidingCli;
+  EnvironmentSettings environment;
+  std::string skyText;  // --sky
 };
 
 int runRender(RenderArgs a, const CommonOptions& common) {
   image::checkImageExtension(a.out);
   finishGuidingOptions(a.guidingCli, a.guiding, a.settings);
   scene::SceneAsset asset = gltf::loadGltf(a.scene);
+  attachEnvironment(asset, a.environment);
   auto ctx = createContext(common, /*windowed=*/false);
   render::RenderSettings s = a.settings;
   s.samplesPerFrame = std::min(s.samplesPerFrame, a.spp);
@@ -38,6 +42,7 @@ int runRender(RenderArgs a, const CommonOptions& common) {
         progress.update(done, std::to_string(done) + " of " + std::to_string(a.spp) + " spp");
       });
   progress.finish();
+  reportSceneLighting(result.stats.fallbackSky, result.stats.environmentLight, asset, a.scene);
   image::writeImage(a.out, result.image, s.exposure, s.tonemap);
   nlohmann::json stats = session::statsToJson(result.stats);
   stats["scene"] = a.scene;
@@ -46,6 +51,7 @@ int runRender(RenderArgs a, const CommonOptions& common) {
   stats["seed"] = s.seed;
   stats["estimator"] = wordOf(estimatorWords(), s.estimator);
   stats["russian_roulette"] = s.russianRoulette;
+  if (!a.environment.file.empty()) stats["environment_map"] = a.environment.file;
   if (a.guiding.enabled) {
     stats["strata"] = std::to_string(a.guiding.rows) + "x" + std::to_string(a.guiding.cols);
     stats["alpha_min"] = a.guiding.alphaMin;
@@ -76,13 +82,16 @@ std::function<int()> addRenderCommand(CLI::App& app, const CommonOptions& common
   cmd->add_option("--stats-json", args->statsJson, "write render statistics here");
   addRenderOptions(*cmd, args->settings);
   addGuidingOptions(*cmd, args->guiding, args->guidingCli);
+  addEnvironmentOptions(*cmd, args->environment, args->skyText);
   addSettingsOption(*cmd, args->settingsFile);
   return [cmd, args, &common]() -> int {
     if (!cmd->parsed()) return -1;
-    Settings file{args->settings, args->guiding, {}};
+    Settings file{args->settings, args->guiding, {}, args->environment};
     applySettingsFile(*cmd, args->settingsFile, file);
     args->settings = file.render;
     args->guiding = file.guiding;
+    args->environment = file.environment;
+    finishEnvironmentOptions(*cmd, args->skyText, args->environment);
     return runRender(*args, common);
   };
 }

@@ -66,6 +66,9 @@ inline constexpr Range kHalfLife{0, 1e6};
 inline constexpr Range kForgetOnLightMove{0, 1e3};
 inline constexpr Range kRenderScale{0.1, 1};
 inline constexpr Range kTargetFrameMs{0, 10000};
+inline constexpr Range kEnvStrength{0, 1e6};
+inline constexpr Range kEnvRotation{-36000, 36000};  // degrees
+inline constexpr Range kSkyRadiance{0, 1e6};
 }  // namespace ranges
 
 }  // namespace qlight::game

@@ -29,6 +29,7 @@ struct Section {
 constexpr Section<render::RenderSettings> kRender{"render", &Settings::render};
 constexpr Section<guiding::GuidingSettings> kGuiding{"guiding", &Settings::guiding};
 constexpr Section<WindowSettings> kWindow{"window", &Settings::window};
+constexpr Section<EnvironmentSettings> kEnvironment{"environment", &Settings::environment};
 
 // One setting of the file: where it sits, the CLI option that overrides it, how it is read
 // and written. `set` returns why the value was refused ("" when it was applied); `copy`
@@ -136,6 +137,44 @@ Field word(Section<Part> section, std::string key, std::string option, T Part::*
   return f;
 }
 
+// The environment map's file ("" for none).
+Field environmentFile() {
+  Field f{kEnvironment.name, "file", "--env"};
+  f.get = [](const Settings& s) -> ordered_json { return s.environment.file; };
+  f.set = [](const json& j, Settings& s) -> std::string {
+    if (!j.is_string()) return "must be a file name (\"\": none), not " + shown(j);
+    s.environment.file = j.get<std::string>();
+    return "";
+  };
+  f.copy = copier(kEnvironment, &EnvironmentSettings::file);
+  return f;
+}
+
+// The uniform sky's radiance [r, g, b], or null for none.
+Field skyColor() {
+  Field f{kEnvironment.name, "sky", "--sky"};
+  f.get = [](const Settings& s) -> ordered_json {
+    if (!s.environment.sky) return nullptr;
+    const glm::vec3 c = *s.environment.sky;
+    return ordered_json::array({fileValue(c.x), fileValue(c.y), fileValue(c.z)});
+  };
+  f.set = [](const json& j, Settings& s) -> std::string {
+    if (j.is_null()) {
+      s.environment.sky.reset();
+      return "";
+    }
+    const Range r = ranges::kSkyRadiance;
+    bool ok = j.is_array() && j.size() == 3;
+    for (size_t i = 0; ok && i < 3; ++i)
+      ok = j[i].is_number() && j[i].get<double>() >= r.lowest && j[i].get<double>() <= r.highest;
+    if (!ok) return "must be [r, g, b] with each in [0, 1e6], or null, not " + shown(j);
+    s.environment.sky = glm::vec3(j[0].get<float>(), j[1].get<float>(), j[2].get<float>());
+    return "";
+  };
+  f.copy = copier(kEnvironment, &EnvironmentSettings::sky);
+  return f;
+}
+
 Field strata() {
   Field f{"guiding", "strata", "--strata"};
   f.get = [](const Settings& s) -> ordered_json {
@@ -165,6 +204,7 @@ const std::vector<Field>& fields() {
   using R = render::RenderSettings;
   using G = guiding::GuidingSettings;
   using W = WindowSettings;
+  using E = EnvironmentSettings;
   static const std::vector<Field> all{
       number(kRender, "width", "--width", &R::width, kImageSize),
       number(kRender, "height", "--height", &R::height, kImageSize),
@@ -196,6 +236,10 @@ const std::vector<Field>& fields() {
       number(kWindow, "render_scale", "--render-scale", &W::renderScale, kRenderScale),
       number(kWindow, "target_frame_ms", "--target-frame-ms", &W::targetFrameMs, kTargetFrameMs),
       boolean(kWindow, "vsync", "--vsync", &W::vsync),
+      environmentFile(),
+      skyColor(),
+      number(kEnvironment, "strength", "--env-strength", &E::strength, kEnvStrength),
+      number(kEnvironment, "rotation", "--env-rotation", &E::rotationDegrees, kEnvRotation),
   };
   return all;
 }

@@ -12,6 +12,7 @@
 #include "engine/gpu/pass_recorder.h"
 #include "engine/ui/swapchain_blit.h"
 #include "game/context_setup.h"
+#include "game/environment_choice.h"
 #include "game/ui_display_filter_panel.h"
 #include "game/ui_guiding_panel.h"
 #include "game/ui_panel.h"
@@ -49,11 +50,18 @@ bool tracingDiffers(const render::RenderSettings& a, const render::RenderSetting
          a.seed != b.seed || a.estimator != b.estimator || a.russianRoulette != b.russianRoulette;
 }
 
+scene::SceneAsset loadSceneWithEnvironment(const std::string& file,
+                                           const EnvironmentSettings& env) {
+  scene::SceneAsset asset = gltf::loadGltf(file);
+  attachEnvironment(asset, env);
+  return asset;
+}
+
 }  // namespace
 
 WindowApp::WindowApp(const DemoArgs& args, const CommonOptions& common)
     : args_(args),
-      asset_(gltf::loadGltf(args.scene)),
+      asset_(loadSceneWithEnvironment(args.scene, args.environment)),
       window_(args.windowWidth, args.windowHeight,
               "qlight: " + std::filesystem::path(args.scene).filename().string()),
       ctx_(createContext(common, true, ui::GlfwWindow::requiredInstanceExtensions(),

@@ -13,7 +13,8 @@
 namespace qlight::game {
 
 Settings WindowApp::currentSettings() const {
-  Settings s{wanted_, guidingWanted_, {}};
+  // The environment is the one the window started with (it loads with the scene).
+  Settings s{wanted_, guidingWanted_, {}, args_.environment};
   s.window.renderScale = renderScale_;
   s.window.targetFrameMs = dynamic_.enabled ? dynamic_.targetMs : 0.0f;
   s.window.vsync = presenter_.vsync();

@@ -76,23 +76,25 @@ uint chooseLight(uint point, float u, out float selectPdf) {
   return light;
 }
 
-// The ray left the scene: only the sky fallback light lives at infinity (it
-// is the last light). Its luminance completes the previous vertex's Q update.
+// The ray left the scene: only the sky (environment map, uniform sky or the
+// fallback) lives at infinity, as the last light. Its luminance in the ray's
+// direction completes the previous vertex's Q update.
 void shadeEscaped(inout PathState st, Switches sw) {
   float skyLuminance = 0.0;
   uint last = frame.lightCount - 1u;
   if (kUseNonTriangleLights && frame.lightCount > 0u && lights[last].type == kLightSky) {
+    vec4 sky = skyRadianceAndPdf(lights[last], st.dir);
     float w = 1.0;
     if (pc.bounce > 0u) {  // camera rays see the sky unweighted
       if (!sw.emitterHits) w = 0.0;
       else if (sw.mis) {
-        float lightPdf = skyLightPdf(lightSelectionPdf(st.prevPoint, last));
+        float lightPdf = lightSelectionPdf(st.prevPoint, last) * sky.w;
         w = powerHeuristic(1.0, st.prevScatterPdf, 1.0, lightPdf);
       }
       st.flags |= kPathEmitterHit;
     }
-    st.radiance += st.throughput * lights[last].emission * w;
-    skyLuminance = luminance(lights[last].emission);
+    st.radiance += st.throughput * sky.xyz * w;
+    skyLuminance = luminance(sky.xyz);
   }
   if (kUseGuiding && sw.learn && !sw.returns) recordQTarget(st.prevEntry, skyLuminance);
 }

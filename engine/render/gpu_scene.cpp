@@ -7,6 +7,8 @@
 #include <stdexcept>
 
 #include "engine/render/scene_packing.h"
+#include "engine/render/environment_tables.h"
+#include "shaders/shared/environment.h"
 #include "shaders/shared/sampling.h"
 
 namespace qlight::render {
@@ -48,7 +50,47 @@ GpuScene::GpuScene(const gpu::Context& ctx, const scene::SceneAsset& asset,
   center_ = asset.bounds.center();
   radius_ = std::max(asset.bounds.radius(), 1e-3f);
   uploadStatic();
+  uploadEnvironment();
   accel_.buildMeshes(asset.meshes);
+}
+
+void GpuScene::uploadEnvironment() {
+  EnvironmentTables tables;
+  const std::optional<scene::EnvironmentAsset>& env = asset_.environment;
+  if (env && env->hasMap()) {
+    // Refused before anything is allocated: the texels and the CDFs are one buffer each.
+    const uint64_t texels = shared::kEnvironmentHeaderTexels + uint64_t(env->width) * env->height;
+    ctx_.requireBufferFits("the environment map " + env->name + " (" + std::to_string(env->width) +
+                               "x" + std::to_string(env->height) + " texels; use a smaller map)",
+                           texels * 16, false, texels);
+    tables = buildEnvironmentTables(*env);
+    environmentLuminanceIntegral_ = tables.luminanceIntegral;
+  } else {
+    tables.texels.assign(1, glm::vec4(0.0f));  // header only: width 0, never read
+    tables.cdf.assign(1, 0.0f);
+  }
+  constexpr VkBufferUsageFlags texel = VK_BUFFER_USAGE_UNIFORM_TEXEL_BUFFER_BIT;
+  envTexels_ = makeBuffer(ctx_, tables.texels, "scene.environmentTexels", texel);
+  envCdf_ = makeBuffer(ctx_, tables.cdf, "scene.environmentCdf", texel);
+  envTexelsView_ =
+      std::make_unique<gpu::BufferView>(ctx_, *envTexels_, VK_FORMAT_R32G32B32A32_SFLOAT);
+  envCdfView_ = std::make_unique<gpu::BufferView>(ctx_, *envCdf_, VK_FORMAT_R32_SFLOAT);
+}
+
+GpuLight GpuScene::skyLight(const scene::EnvironmentAsset& env) const {
+  GpuLight sky{};
+  sky.type = shared::kLightSky;  // must be the last light (the shader looks there on a miss)
+  sky.emission = env.scale();
+  // Selection weight: the power entering the scene's bounding sphere, pi r^2 times the
+  // luminance integrated over the sphere of directions (a uniform sky: 4 pi L).
+  double integral = 4.0 * kPi * luminance(sky.emission);
+  if (env.hasMap()) {
+    sky.flags = shared::kLightEnvironmentMap;
+    integral = environmentLuminanceIntegral_ * luminance(sky.emission);
+  }
+  sky.power = float(kPi * double(radius_) * radius_ * integral);
+  if (!(sky.power > 0.0f) || !std::isfinite(sky.power)) sky.power = 0.0f;
+  return sky;
 }
 
 void GpuScene::uploadStatic() {
@@ -161,14 +203,21 @@ void GpuScene::uploadLights(const SceneDraw& draw) {
     }
     if (l.power > 0.0f && std::isfinite(l.power)) lights_.push_back(l);
   }
-  fallbackSky_ = lights_.empty() && options_.fallbackSkyRadiance > 0.0f;
-  if (fallbackSky_) {
-    GpuLight sky{};
-    sky.type = shared::kLightSky;  // must be the last light (the shader looks there on a miss)
-    sky.emission = glm::vec3(options_.fallbackSkyRadiance);
-    sky.power = 1.0f;
-    lights_.push_back(sky);
+  // The user's environment lights the scene whatever else does; without one, a scene with no
+  // light gets the fallback sky.
+  const std::optional<scene::EnvironmentAsset>& env = asset_.environment;
+  fallbackSky_ = !env && lights_.empty() && options_.fallbackSkyRadiance > 0.0f;
+  GpuLight sky{};
+  if (env) {
+    sky = skyLight(*env);
+  } else if (fallbackSky_) {
+    scene::EnvironmentAsset fallback;
+    fallback.color = glm::vec3(options_.fallbackSkyRadiance);
+    sky = skyLight(fallback);
+    sky.power = 1.0f;  // the only light
   }
+  environmentLit_ = env && sky.power > 0.0f;
+  if (sky.power > 0.0f) lights_.push_back(sky);
   lightCount_ = uint32_t(lights_.size());
   hasNonTriangleLights_ = std::any_of(lights_.begin(), lights_.end(), [](const GpuLight& l) {
     return l.type != shared::kLightTriangle;
@@ -233,7 +282,10 @@ void GpuScene::update(const SceneDraw& draw) {
 
 void GpuScene::bind(gpu::PassBuilder& pass) const {
   bindSurfaces(pass);
-  pass.read(QL_BIND_LIGHTS, *lightBuffer_).read(QL_BIND_LIGHT_CDF, *lightCdfView_);
+  pass.read(QL_BIND_LIGHTS, *lightBuffer_)
+      .read(QL_BIND_LIGHT_CDF, *lightCdfView_)
+      .read(QL_BIND_ENV_TEXELS, *envTexelsView_)
+      .read(QL_BIND_ENV_CDF, *envCdfView_);
 }
 
 void GpuScene::bindSurfaces(gpu::PassBuilder& pass) const {

@@ -14,8 +14,9 @@
 namespace qlight::render {
 
 struct SceneLightingOptions {
-  // Radiance of the uniform sky added when the scene has no emitter at all, so
-  // that a glTF without lights renders visibly instead of black (documented fallback).
+  // Radiance of the uniform sky added when the scene has no emitter at all and the user chose
+  // no environment (SceneAsset::environment), so that a glTF without lights renders visibly
+  // instead of black (documented fallback).
   float fallbackSkyRadiance = 1.0f;
 };
 
@@ -35,6 +36,8 @@ class GpuScene {
 
   uint32_t lightCount() const { return lightCount_; }
   bool usesFallbackSky() const { return fallbackSky_; }
+  // The user's environment is the last light (it has power: a black one is left out).
+  bool hasEnvironment() const { return environmentLit_; }
   uint32_t triangleCount() const { return triangleCount_; }
   float surfaceArea() const { return surfaceArea_; }
   // Features the path tracing passes are specialized on.
@@ -43,6 +46,7 @@ class GpuScene {
   bool hasNonTriangleLights() const {
     return hasNonTriangleLights_;
   }  // world space, of the last update
+  bool hasEnvironmentMap() const { return environmentLit_ && asset_.environment->hasMap(); }
   const glm::vec3& boundsCenter() const { return center_; }
   float boundsRadius() const { return radius_; }
   const std::vector<shared::GpuLight>& lights() const { return lights_; }
@@ -53,7 +57,10 @@ class GpuScene {
 
  private:
   void uploadStatic();
+  void uploadEnvironment();
   void uploadLights(const SceneDraw& draw);
+  // The sky light of the user's environment, or of the fallback; power 0 when black.
+  shared::GpuLight skyLight(const scene::EnvironmentAsset& env) const;
 
   const gpu::Context& ctx_;
   const scene::SceneAsset& asset_;
@@ -66,6 +73,8 @@ class GpuScene {
   uint32_t lightCount_ = 0;
   uint32_t triangleCount_ = 0;
   bool fallbackSky_ = false;
+  bool environmentLit_ = false;
+  double environmentLuminanceIntegral_ = 0.0;  // of the map (environment_tables.h)
   glm::vec3 center_{0.0f};
   float radius_ = 1.0f;
   float surfaceArea_ = 0.0f;
@@ -79,6 +88,8 @@ class GpuScene {
   std::unique_ptr<gpu::Buffer> bvhNodes_, bvhTris_, bvhInstances_, instances_, lightBuffer_,
       lightCdf_;
   std::unique_ptr<gpu::BufferView> bvhNodesView_, bvhTrisView_, bvhInstancesView_;
+  std::unique_ptr<gpu::Buffer> envTexels_, envCdf_;  // placeholders without a map
+  std::unique_ptr<gpu::BufferView> envTexelsView_, envCdfView_;
 };
 
 }  // namespace qlight::render

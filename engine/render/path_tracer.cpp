@@ -101,6 +101,7 @@ const gpu::ComputePipeline& PathTracer::specialized(const char* shader, const Gp
   features[shared::kSpecUseLightLearning] = guide.lightLearning;
   features[shared::kSpecUseNonTriangleLights] = scene.hasNonTriangleLights();
   features[shared::kSpecUseVertexExtras] = scene.hasVertexExtras();
+  features[shared::kSpecUseEnvironmentMap] = scene.hasEnvironmentMap();
   uint32_t key = 0;  // one bit per feature
   for (uint32_t id = shared::kSpecUseTextures; id < features.size(); ++id)
     key |= features[id] << (id - shared::kSpecUseTextures);

@@ -9,8 +9,11 @@
 #include <glm/glm.hpp>
 #include <glm/gtc/quaternion.hpp>
 #include <limits>
+#include <optional>
 #include <string>
 #include <vector>
+
+#include "engine/scene/environment_asset.h"
 
 namespace qlight::scene {
 
@@ -188,6 +191,9 @@ struct SceneAsset {
   int32_t defaultMaterial = -1;
   Bounds bounds;                      // world space, of the shown scene's mesh instances at t = 0
   std::vector<std::string> warnings;  // one line each, also printed to stderr when loading
+  // The user's environment light (not from the file); absent: the fallback sky lights a
+  // scene without any light (GpuScene).
+  std::optional<EnvironmentAsset> environment;
 
   // Longest animation, 0 without animations.
   float animationDuration() const {

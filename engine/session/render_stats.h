@@ -28,6 +28,7 @@ struct RenderStats {
   std::string device;
   uint32_t lights = 0;
   bool fallbackSky = false;
+  bool environmentLight = false;  // the user's environment lights the scene (not black)
   bool guided = false;
   guiding::GuidingStats guidingStats;
   double pointGenerationSeconds = 0;

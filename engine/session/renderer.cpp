@@ -148,6 +148,7 @@ RenderStats Renderer::newStats() const {
   s.device = ctx_.deviceName();
   s.lights = scene_.lightCount();
   s.fallbackSky = scene_.usesFallbackSky();
+  s.environmentLight = scene_.hasEnvironment();
   s.guided = guided();
   s.pointGenerationSeconds = pointGenerationSeconds_;
   return s;

@@ -24,6 +24,7 @@ nlohmann::json statsToJson(const RenderStats& s) {
   j["device"] = s.device;
   j["lights"] = s.lights;
   j["fallback_sky"] = s.fallbackSky;
+  j["environment_light"] = s.environmentLight;
   nlohmann::json gpu = nlohmann::json::object();
   double total = 0;
   for (auto& [name, ms] : s.gpuMs) {

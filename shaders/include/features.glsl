@@ -10,3 +10,5 @@ layout(constant_id = QL_SPEC_USE_LIGHT_LEARNING) const bool kUseLightLearning = 
 layout(constant_id = QL_SPEC_USE_NON_TRIANGLE_LIGHTS) const bool kUseNonTriangleLights = true;
 // TEXCOORD_1, COLOR_0 and tangents (GpuVertexExtras) of some mesh.
 layout(constant_id = QL_SPEC_USE_VERTEX_EXTRAS) const bool kUseVertexExtras = true;
+// The sky is an environment map (shared/environment.h), else uniform.
+layout(constant_id = QL_SPEC_USE_ENVIRONMENT_MAP) const bool kUseEnvironmentMap = true;

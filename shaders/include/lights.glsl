@@ -3,10 +3,15 @@
 layout(binding = QL_BIND_LIGHTS, scalar) readonly buffer Lights { GpuLight lights[]; };
 layout(binding = QL_BIND_LIGHT_CDF) uniform samplerBuffer uLightCdf;
 float lightCdfAt(uint i) { return texelFetch(uLightCdf, int(i)).x; }
+layout(binding = QL_BIND_ENV_TEXELS) uniform samplerBuffer uEnvTexels;
+layout(binding = QL_BIND_ENV_CDF) uniform samplerBuffer uEnvCdf;
+#define QL_ENV_TEXEL_AT(i) texelFetch(uEnvTexels, int(i))
+#define QL_ENV_CDF_AT(i) texelFetch(uEnvCdf, int(i)).x
+#include "shared/environment.h"
 
 struct LightSample {
   vec3 direction;  // unit, from the shading point to the light
-  float distance;  // to the light point; infinite for directional and sky
+  float distance;  // to the light point; infinite (1e30) for directional and sky
   vec3 radiance;   // arriving radiance (or intensity / d^2 for punctual lights)
   float pdf;       // solid-angle pdf including selection; 0: no sample
   bool delta;      // punctual or directional: cannot be hit by a scattered ray
@@ -56,7 +61,17 @@ float triangleLightPdf(GpuLight l, float selectPdf, vec3 dir, float dist) {
   return cosLight > 0.0 ? selectPdf * dist * dist / (l.area * cosLight) : 0.0;
 }
 
-float skyLightPdf(float selectPdf) { return selectPdf * uniformSpherePdf(); }
+bool skyHasMap(GpuLight l) { return kUseEnvironmentMap && (l.flags & kLightEnvironmentMap) != 0u; }
+
+// Radiance from the sky light `l` in world direction `dir` (rgb) and the solid-angle pdf
+// of NEE sampling that direction, selection excluded (w).
+vec4 skyRadianceAndPdf(GpuLight l, vec3 dir) {
+  if (skyHasMap(l)) {
+    vec4 t = environmentLookup(environmentMapHeader(), dir);
+    return vec4(l.emission * t.xyz, t.w);
+  }
+  return vec4(l.emission, uniformSpherePdf());
+}
 
 // Samples a point or direction on light `index`, chosen with probability selectPdf.
 LightSample sampleLight(vec3 x, vec2 u, uint index, float selectPdf) {
@@ -106,9 +121,16 @@ LightSample sampleLight(vec3 x, vec2 u, uint index, float selectPdf) {
     s.pdf = selectPdf;
     s.delta = true;
   } else if (kUseNonTriangleLights) {  // sky
-    s.direction = sampleUniformSphere(u);
-    s.radiance = l.emission;
-    s.pdf = skyLightPdf(selectPdf);
+    if (skyHasMap(l)) {
+      EnvironmentSample e = sampleEnvironment(environmentMapHeader(), u);
+      s.direction = e.direction;
+      s.radiance = l.emission * e.radiance;
+      s.pdf = selectPdf * e.pdf;
+    } else {
+      s.direction = sampleUniformSphere(u);
+      s.radiance = l.emission;
+      s.pdf = selectPdf * uniformSpherePdf();
+    }
   }
   return s;
 }

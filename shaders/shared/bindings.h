@@ -58,4 +58,8 @@
 #define QL_BIND_TRACE_RAYS 31
 #define QL_BIND_TRACE_HITS 32
 
+// --- scene, continued: the environment map (GpuScene::bind; layout in environment.h) ---
+#define QL_BIND_ENV_TEXELS 33  // header, then (radiance, density) per pixel
+#define QL_BIND_ENV_CDF 34     // conditional CDFs per row, then the marginal
+
 #endif

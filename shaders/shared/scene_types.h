@@ -110,10 +110,13 @@ QL_CONST uint kLightTriangle = 0u;
 QL_CONST uint kLightPoint = 1u;
 QL_CONST uint kLightSpot = 2u;
 QL_CONST uint kLightDirectional = 3u;
-QL_CONST uint kLightSky = 4u;  // uniform environment, the fallback for scenes without emitters
+// The light at infinity, always the last light: the user's environment map or uniform sky,
+// or the uniform fallback sky of scenes without any light.
+QL_CONST uint kLightSky = 4u;
 QL_CONST uint kLightDoubleSided = 1u;
 QL_CONST uint kLightMirrored =
     2u;  // triangle under a mirroring transform: front normal is -(e1 x e2)
+QL_CONST uint kLightEnvironmentMap = 4u;  // sky: radiance = emission x the map (environment.h)
 
 struct GpuLight {
   vec3 position;  // triangle: world vertex 0; point/spot: position
@@ -123,11 +126,11 @@ struct GpuLight {
   vec3 edge2;     // triangle: v2 - v0
   float area;     // triangle: world area
   vec3 emission;  // triangle: radiance; point/spot: intensity (W/sr); directional: irradiance; sky:
-                  // radiance
+                  // radiance (with kLightEnvironmentMap: the map's scale)
   float cosInner;
   float cosOuter;
   float range;  // 0: infinite
-  uint flags;   // kLightDoubleSided
+  uint flags;   // kLightDoubleSided, kLightMirrored, kLightEnvironmentMap
   float power;  // selection weight (proportional to emitted power)
 };
 QL_CHECK_SIZE(GpuLight, 80);

@@ -13,6 +13,7 @@
 #define QL_SPEC_USE_LIGHT_LEARNING 5
 #define QL_SPEC_USE_NON_TRIANGLE_LIGHTS 6
 #define QL_SPEC_USE_VERTEX_EXTRAS 7
+#define QL_SPEC_USE_ENVIRONMENT_MAP 8
 
 QL_BEGIN
 QL_CONST uint kSpecUseTextures = QL_SPEC_USE_TEXTURES;
@@ -20,7 +21,8 @@ QL_CONST uint kSpecUseGuiding = QL_SPEC_USE_GUIDING;
 QL_CONST uint kSpecUseLightLearning = QL_SPEC_USE_LIGHT_LEARNING;
 QL_CONST uint kSpecUseNonTriangleLights = QL_SPEC_USE_NON_TRIANGLE_LIGHTS;
 QL_CONST uint kSpecUseVertexExtras = QL_SPEC_USE_VERTEX_EXTRAS;
-QL_CONST uint kSpecPathFeatureCount = QL_SPEC_USE_VERTEX_EXTRAS + 1u;  // values to pass
+QL_CONST uint kSpecUseEnvironmentMap = QL_SPEC_USE_ENVIRONMENT_MAP;
+QL_CONST uint kSpecPathFeatureCount = QL_SPEC_USE_ENVIRONMENT_MAP + 1u;  // values to pass
 QL_END
 
 #endif

@@ -57,6 +57,10 @@ Settings everyFieldChanged() {
   s.window.renderScale = 0.65f;
   s.window.targetFrameMs = 42.5f;
   s.window.vsync = true;
+  s.environment.file = "maps/sky.hdr";
+  s.environment.sky = glm::vec3(0.25f, 0.5f, 2.0f);
+  s.environment.strength = 3.5f;
+  s.environment.rotationDegrees = -75.0f;
   return s;
 }
 
@@ -97,6 +101,10 @@ void expectSame(const Settings& a, const Settings& b) {
   EXPECT_EQ(a.window.renderScale, b.window.renderScale);
   EXPECT_EQ(a.window.targetFrameMs, b.window.targetFrameMs);
   EXPECT_EQ(a.window.vsync, b.window.vsync);
+  EXPECT_EQ(a.environment.file, b.environment.file);
+  EXPECT_EQ(a.environment.sky, b.environment.sky);
+  EXPECT_EQ(a.environment.strength, b.environment.strength);
+  EXPECT_EQ(a.environment.rotationDegrees, b.environment.rotationDegrees);
 }
 
 bool mentions(const std::vector<std::string>& warnings, const std::string& text) {
@@ -269,6 +277,29 @@ TEST(SettingsFile, MalformedFilesAreOneLineErrorsNamingTheFile) {
   } catch (const std::runtime_error& e) {
     EXPECT_NE(std::string(e.what()).find("line 1, column"), std::string::npos) << e.what();
   }
+}
+
+// The environment's keys: no sky is null; a sky that is not three numbers in range, a file
+// that is not a string and a negative strength warn by name and change nothing.
+TEST(SettingsFile, EnvironmentKeysAndTheirRefusals) {
+  EXPECT_TRUE(settingsToJson(Settings{})["environment"]["sky"].is_null());
+  EXPECT_EQ(settingsToJson(Settings{})["environment"]["file"], "");
+  Settings s;
+  std::vector<std::string> warnings = applySettingsJson(
+      nlohmann::json::parse(R"({"environment": {"sky": [1, 2], "file": 7, "strength": -1,
+                                                "rotation": 1e9}})"),
+      s, "e.json");
+  EXPECT_EQ(warnings.size(), 4u) << joined(warnings);
+  for (const char* key :
+       {"environment.sky", "environment.file", "environment.strength", "environment.rotation"})
+    EXPECT_TRUE(mentions(warnings, key)) << key << "\n" << joined(warnings);
+  expectSame(s, Settings{});
+  warnings = applySettingsJson(nlohmann::json::parse(R"({"environment": {"sky": [0.5, 0, 4]}})"), s,
+                               "e.json");
+  EXPECT_TRUE(warnings.empty()) << joined(warnings);
+  EXPECT_EQ(s.environment.sky, glm::vec3(0.5f, 0.0f, 4.0f));
+  applySettingsJson(nlohmann::json::parse(R"({"environment": {"sky": null}})"), s, "e.json");
+  EXPECT_FALSE(s.environment.sky.has_value());
 }
 
 }  // namespace
