@@ -1,6 +1,7 @@
 #include "engine/bvh/scene_bvh.h"
 
 #include <algorithm>
+#include <array>
 #include <bit>
 #include <cmath>
 #include <stdexcept>
@@ -149,6 +150,53 @@ uint32_t SceneBvh::addMesh(std::span<const glm::vec3> positions, std::span<const
   topLevel_.nodeOffset = blasNodeEnd_;
   writeHeader();
   return static_cast<uint32_t>(blases_.size() - 1);
+}
+
+void SceneBvh::refitMesh(uint32_t index, std::span<const glm::vec3> positions,
+                         std::span<const uint32_t> indices) {
+  BlasInfo& info = blases_.at(index);
+  if (indices.size() != std::size_t{info.meshTriangleCount} * 3)
+    throw std::runtime_error(
+        "engine/bvh/scene_bvh.cpp: refit with " + std::to_string(indices.size() / 3) +
+        " triangles of a mesh built with " + std::to_string(info.meshTriangleCount));
+  if (info.rootRef == 0) return;
+  for (uint32_t k = info.triangleOffset; k < info.triangleOffset + info.triangleCount; ++k) {
+    const uint32_t* tri = &indices[3 * std::size_t{flat_.triangleIndices[k]}];
+    for (int c = 0; c < 3; ++c) {
+      if (tri[c] >= positions.size() || !finite(positions[tri[c]]))
+        throw std::runtime_error("engine/bvh/scene_bvh.cpp: refit vertex " +
+                                 std::to_string(tri[c]) + " is missing or not finite");
+      glm::vec4& texel = flat_.triangles[3 * std::size_t{k} + c];
+      texel = glm::vec4(positions[tri[c]], texel.w);  // w: the triangle's index, kept
+    }
+  }
+  // Children come after their parents in a built tree, so one backward pass sees every
+  // child before its parent. Boxes are kept unpadded here and padded once when written.
+  auto leafBox = [&](uint32_t ref) {
+    Aabb box;
+    const uint32_t first = shared::bvhLeafFirst(ref);
+    for (uint32_t t = first; t < first + shared::bvhLeafCount(ref); ++t)
+      for (int c = 0; c < 3; ++c) box.grow(glm::vec3(flat_.triangles[3 * std::size_t{t} + c]));
+    return box;
+  };
+  std::vector<Aabb> boxes(info.nodeCount);
+  std::vector<std::array<Aabb, 2>> children(info.nodeCount);
+  for (uint32_t i = info.nodeCount; i-- > 0;) {
+    const std::size_t texel = std::size_t{info.nodeOffset + i} * kBvhNodeTexels;
+    for (int side = 0; side < 2; ++side) {
+      const uint32_t ref = std::bit_cast<uint32_t>(flat_.nodes[texel + 2 * side].w);
+      children[i][side] = (ref & kBvhLeafBit) ? leafBox(ref) : boxes.at(ref - info.nodeOffset);
+      const Aabb p = padded(children[i][side]);
+      flat_.nodes[texel + 2 * side] = point(p.min, ref);
+      flat_.nodes[texel + 2 * side + 1] = point(p.max, 0);
+    }
+    boxes[i] = unite(children[i][0], children[i][1]);
+  }
+  const bool innerRoot = !(info.rootRef & kBvhLeafBit);
+  const Aabb bounds = innerRoot ? boxes[0] : leafBox(info.rootRef);
+  info.bounds = padded(bounds);
+  info.rootChildren[0] = innerRoot ? padded(children[0][0]) : info.bounds;
+  info.rootChildren[1] = innerRoot ? padded(children[0][1]) : info.bounds;
 }
 
 void SceneBvh::rebuildTopLevel(std::span<const Instance> instances) {

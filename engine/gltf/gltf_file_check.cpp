@@ -241,8 +241,8 @@ void checkImages(const json& root, LoadContext& ctx) {
 }  // namespace
 
 bool isSupportedRequiredExtension(const std::string& name) {
-  return name == "KHR_lights_punctual" || name == "KHR_materials_emissive_strength" ||
-         name == "KHR_materials_specular";
+  return name == "KHR_lights_punctual" || name == "EXT_mesh_gpu_instancing" ||
+         name == "KHR_materials_emissive_strength" || name == "KHR_materials_specular";
 }
 
 CheckedGltfFile readAndCheckGltfFile(const std::filesystem::path& path, LoadContext& ctx) {

@@ -7,6 +7,7 @@
 #include "engine/gltf/gltf_convert.h"
 #include "engine/gltf/gltf_file_check.h"
 #include "engine/scene/animation.h"
+#include "engine/scene/deform.h"
 #include "engine/scene/transforms.h"
 
 namespace qlight::gltf {
@@ -62,11 +63,13 @@ SceneAsset convertCheckedFile(const detail::CheckedGltfFile& file,
   detail::convertTextures(model, scene, ctx);
   detail::convertMeshes(model, scene, ctx);
   detail::convertNodes(model, scene, ctx);
+  detail::convertSkins(model, scene, ctx);
+  detail::convertMeshInstancing(model, scene, ctx);
   detail::convertCameras(model, scene, ctx);
   detail::convertLights(model, scene, ctx);
   detail::convertAnimations(model, scene, ctx);
 
-  scene.bounds = worldBounds(scene, worldTransforms(scene, animate(scene, 0.0f)));
+  scene.bounds = posedWorldBounds(scene, 0.0f);
   detail::replaceOrthographicCameras(model, scene, ctx);
   scene.warnings = std::move(ctx.warnings());
   return scene;

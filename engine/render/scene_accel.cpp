@@ -18,6 +18,11 @@ void SceneAccel::buildMeshes(const std::vector<scene::MeshAsset>& meshes) {
   for (const scene::MeshAsset& m : meshes) impl_->bvh.addMesh(m.positions, m.indices);
 }
 
+void SceneAccel::refitMesh(uint32_t mesh, std::span<const glm::vec3> positions,
+                           std::span<const uint32_t> indices) {
+  impl_->bvh.refitMesh(mesh, positions, indices);
+}
+
 void SceneAccel::buildInstances(const std::vector<MeshDraw>& draws) {
   std::vector<bvh::Instance> instances;
   instances.reserve(draws.size());
