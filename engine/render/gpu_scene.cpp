@@ -1,6 +1,7 @@
 #include "engine/render/gpu_scene.h"
 
 #include <algorithm>
+#include <chrono>
 #include <cmath>
 #include <cstdio>
 #include <cstring>
@@ -68,9 +69,14 @@ GpuScene::GpuScene(const gpu::Context& ctx, const scene::SceneAsset& asset,
     : ctx_(ctx), asset_(asset), options_(options) {
   center_ = asset.bounds.center();
   radius_ = std::max(asset.bounds.radius(), 1e-3f);
+  using Clock = std::chrono::steady_clock;
+  const auto start = Clock::now();
   requireGeometryFits();
   uploadStatic();
+  const auto blasStart = Clock::now();
   accel_.buildMeshes(asset.meshes);
+  blasBuildSeconds_ = std::chrono::duration<double>(Clock::now() - blasStart).count();
+  buildSeconds_ = std::chrono::duration<double>(Clock::now() - start).count();
   poseVersions_.assign(asset.meshes.size(), 0);
   posedPositions_.resize(asset.meshes.size());
 }

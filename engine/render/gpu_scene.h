@@ -40,6 +40,10 @@ class GpuScene {
   uint32_t triangleCount() const { return triangleCount_; }
   // Device memory of every scene buffer (geometry, BVH, materials, textures, lights).
   uint64_t memoryBytes() const;
+  // Wall time of building the bottom-level BVHs, and of the whole construction (uploads
+  // included), in seconds.
+  double blasBuildSeconds() const { return blasBuildSeconds_; }
+  double buildSeconds() const { return buildSeconds_; }
   float surfaceArea() const { return surfaceArea_; }
   // Features the path tracing passes are specialized on.
   bool hasTextures() const { return hasTextures_; }
@@ -78,6 +82,7 @@ class GpuScene {
   glm::vec3 center_{0.0f};
   float radius_ = 1.0f;
   float surfaceArea_ = 0.0f;
+  double blasBuildSeconds_ = 0.0, buildSeconds_ = 0.0;
   bool hasTextures_ = false;
   bool hasNonTriangleLights_ = false;
 

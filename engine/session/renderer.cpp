@@ -150,6 +150,10 @@ RenderStats Renderer::newStats() const {
   s.fallbackSky = scene_.usesFallbackSky();
   s.guided = guided();
   s.pointGenerationSeconds = pointGenerationSeconds_;
+  s.triangles = scene_.triangleCount();
+  s.sceneGpuBytes = scene_.memoryBytes();
+  s.blasBuildSeconds = scene_.blasBuildSeconds();
+  s.sceneBuildSeconds = scene_.buildSeconds();
   return s;
 }
 
