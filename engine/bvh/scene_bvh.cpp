@@ -2,10 +2,13 @@
 
 #include <algorithm>
 #include <array>
+#include <atomic>
 #include <bit>
 #include <cmath>
+#include <exception>
 #include <stdexcept>
 #include <string>
+#include <thread>
 
 namespace qlight::bvh {
 namespace {
@@ -84,16 +87,26 @@ bool isDegenerateTriangle(const glm::vec3& p0, const glm::vec3& p1, const glm::v
 
 SceneBvh::SceneBvh() { writeHeader(); }
 
-uint32_t SceneBvh::addMesh(std::span<const glm::vec3> positions, std::span<const uint32_t> indices,
-                           const BuildOptions& options) {
+// One mesh's tree, built on its own (any thread) before it joins the concatenated arrays.
+struct MeshTree {
+  std::vector<PrimRef> prims;  // leaf order after the build
+  BuiltTree tree;
+  uint32_t meshTriangles = 0;
+};
+
+namespace {
+
+MeshTree buildMeshTree(std::span<const glm::vec3> positions, std::span<const uint32_t> indices,
+                       const BuildOptions& options) {
   if (indices.size() % 3 != 0) {
     throw std::runtime_error("engine/bvh/scene_bvh.cpp: index count " +
                              std::to_string(indices.size()) + " is not a multiple of 3");
   }
-  const uint32_t meshTriangles = static_cast<uint32_t>(indices.size() / 3);
-  std::vector<PrimRef> prims;
-  prims.reserve(meshTriangles);
-  for (uint32_t t = 0; t < meshTriangles; ++t) {
+  MeshTree out;
+  out.meshTriangles = static_cast<uint32_t>(indices.size() / 3);
+  std::vector<PrimRef>& prims = out.prims;
+  prims.reserve(out.meshTriangles);
+  for (uint32_t t = 0; t < out.meshTriangles; ++t) {
     glm::vec3 p[3];
     for (int k = 0; k < 3; ++k) {
       uint32_t index = indices[3 * t + k];
@@ -112,9 +125,54 @@ uint32_t SceneBvh::addMesh(std::span<const glm::vec3> positions, std::span<const
     prims.push_back(
         PrimRef{glm::min(p[0], glm::min(p[1], p[2])), t, glm::max(p[0], glm::max(p[1], p[2]))});
   }
+  if (!prims.empty()) out.tree = buildSah(prims, options);
+  return out;
+}
 
+}  // namespace
+
+uint32_t SceneBvh::addMesh(std::span<const glm::vec3> positions, std::span<const uint32_t> indices,
+                           const BuildOptions& options) {
+  return appendMesh(buildMeshTree(positions, indices, options), positions, indices);
+}
+
+void SceneBvh::addMeshes(std::span<const MeshInput> meshes, const BuildOptions& options) {
+  // Small meshes build one per thread; a large one (whose build is parallel itself) alone.
+  const uint32_t threads =
+      std::max(1u, std::min(options.threads, std::thread::hardware_concurrency()));
+  std::vector<MeshTree> trees(meshes.size());
+  std::vector<std::exception_ptr> errors(meshes.size());
+  BuildOptions single = options;
+  single.threads = 1;
+  std::atomic<size_t> next{0};
+  auto worker = [&] {
+    for (size_t i = next++; i < meshes.size(); i = next++) {
+      if (meshes[i].indices.size() / 3 >= kParallelBuildMinPrims) continue;
+      try {
+        trees[i] = buildMeshTree(meshes[i].positions, meshes[i].indices, single);
+      } catch (...) {
+        errors[i] = std::current_exception();
+      }
+    }
+  };
+  std::vector<std::thread> pool;
+  for (uint32_t t = 1; t < threads; ++t) pool.emplace_back(worker);
+  worker();
+  for (std::thread& t : pool) t.join();
+  for (size_t i = 0; i < meshes.size(); ++i) {
+    if (errors[i]) std::rethrow_exception(errors[i]);
+    if (meshes[i].indices.size() / 3 >= kParallelBuildMinPrims)
+      trees[i] = buildMeshTree(meshes[i].positions, meshes[i].indices, options);
+    appendMesh(std::move(trees[i]), meshes[i].positions, meshes[i].indices);
+  }
+}
+
+uint32_t SceneBvh::appendMesh(MeshTree built, std::span<const glm::vec3> positions,
+                              std::span<const uint32_t> indices) {
+  const std::vector<PrimRef>& prims = built.prims;
+  const BuiltTree& tree = built.tree;
   BlasInfo info;
-  info.meshTriangleCount = meshTriangles;
+  info.meshTriangleCount = built.meshTriangles;
   info.triangleOffset = static_cast<uint32_t>(flat_.triangleIndices.size());
   info.nodeOffset = blasNodeEnd_;
   if (uint64_t{info.triangleOffset} + prims.size() > shared::kBvhMaxTriangles) {
@@ -123,7 +181,6 @@ uint32_t SceneBvh::addMesh(std::span<const glm::vec3> positions, std::span<const
 
   flat_.nodes.resize(std::size_t{blasNodeEnd_} * kBvhNodeTexels);  // the top level goes stale
   if (!prims.empty()) {
-    BuiltTree tree = buildSah(prims, options);
     auto rebase = [&](uint32_t ref) {
       return globalRef(ref, info.nodeOffset, info.triangleOffset);
     };
