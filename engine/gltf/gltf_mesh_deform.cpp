@@ -99,7 +99,9 @@ void readMorphTargets(const tinygltf::Model& model, const tinygltf::Mesh& mesh,
     for (const auto& [name, accessor] : prim.targets[t]) {
       if (name != "POSITION" && name != "NORMAL") {
         checkAccessorBounds(model, accessor, use + " " + name, ctx);
-        ctx.warn(use + " moves " + name + ", which morphing does not support; ignored");
+        // TANGENT targets follow tangents, which meshes do not carry yet: nothing to move.
+        if (name != "TANGENT")
+          ctx.warn(use + " moves " + name + ", which morphing does not support; ignored");
         continue;
       }
       std::vector<glm::vec3> deltas = readVec3(model, accessor, n, use + " " + name, ctx);
