@@ -1,5 +1,6 @@
 #include "game/render_command.h"
 
+#include <chrono>
 #include <cstdio>
 #include <memory>
 
@@ -31,8 +32,11 @@ struct RenderArgs {
 int runRender(RenderArgs a, const CommonOptions& common) {
   image::checkImageExtension(a.out);
   finishGuidingOptions(a.guidingCli, a.guiding, a.settings);
+  const auto loadStart = std::chrono::steady_clock::now();
   scene::SceneAsset asset = gltf::loadGltf(a.scene);
   attachEnvironment(asset, a.environment);
+  const double loadSeconds =
+      std::chrono::duration<double>(std::chrono::steady_clock::now() - loadStart).count();
   auto ctx = createContext(common, /*windowed=*/false);
   render::RenderSettings s = a.settings;
   s.samplesPerFrame = std::min(s.samplesPerFrame, a.spp);
@@ -46,6 +50,7 @@ int runRender(RenderArgs a, const CommonOptions& common) {
   image::writeImage(a.out, result.image, s.exposure, s.tonemap);
   nlohmann::json stats = session::statsToJson(result.stats);
   stats["scene"] = a.scene;
+  stats["load_seconds"] = loadSeconds;
   stats["time"] = a.time;
   stats["max_depth"] = s.maxDepth;
   stats["seed"] = s.seed;

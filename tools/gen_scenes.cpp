@@ -9,7 +9,7 @@
 // stay under 200 KB. The furnished room (7 MB) is not kept in the repository: `--large`
 // writes it, and the build runs that into build/assets.
 //
-//   gen_scenes [--out DIR] [--large]      (DIR defaults to ./assets)
+//   gen_scenes [--out DIR] [--large | --tessellated N]      (DIR defaults to ./assets)
 #include <CLI/CLI.hpp>
 #include <algorithm>
 #include <cmath>
@@ -17,6 +17,7 @@
 #include <filesystem>
 #include <glm/gtc/matrix_transform.hpp>
 #include <glm/gtc/quaternion.hpp>
+#include <limits>
 #include <string>
 #include <utility>
 #include <vector>
@@ -1023,13 +1024,30 @@ int write(const std::filesystem::path& dir, const std::string& name, SceneAsset 
   return bytes < maxBytes && back.warnings.empty() ? 0 : 1;
 }
 
+// The scale test: the Cornell room around one finely tessellated sphere of about
+// `triangles` triangles, every one its own (no instancing), for measuring load and BVH build.
+SceneAsset tessellatedSphere(uint32_t triangles) {
+  SceneAsset scene = cornellBox();
+  const uint32_t white = addMaterial(scene, "sphere", vec3(0.7f));
+  const int stacks = std::max(4, int(std::sqrt(double(triangles) / 4.0)));
+  MeshAsset sphere;
+  addSphere(sphere, glm::translate(glm::mat4(1.0f), vec3(0.0f, 0.6f, 0.0f)), 0.5f, 2 * stacks,
+            stacks, white);
+  addMeshNode(scene, "sphere", addMesh(scene, std::move(sphere)));
+  return scene;
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
   CLI::App app{"Writes the glTF scenes qlight ships"};
   std::string out = "assets";
   bool large = false;
+  uint32_t tessellated = 0;
   app.add_option("--out", out, "output directory");
+  app.add_option("--tessellated", tessellated,
+                 "write only tessellated_sphere.gltf: the Cornell room around a sphere of about "
+                 "this many triangles (the scale test; not kept in the repository)");
   app.add_flag("--large", large,
                "write the scenes too large for the repository instead (the build does, into "
                "build/assets)");
@@ -1037,6 +1055,9 @@ int main(int argc, char** argv) {
   try {
     std::filesystem::create_directories(out);
     int failures = 0;
+    if (tessellated > 0)
+      return write(out, "tessellated_sphere.gltf", tessellatedSphere(tessellated),
+                   std::numeric_limits<size_t>::max());
     if (large) {
       failures += write(out, "furnished_room.gltf", furnishedRoom(), 12 * 1024 * 1024);
       return failures == 0 ? 0 : 1;

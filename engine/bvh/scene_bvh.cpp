@@ -1,10 +1,14 @@
 #include "engine/bvh/scene_bvh.h"
 
 #include <algorithm>
+#include <array>
+#include <atomic>
 #include <bit>
 #include <cmath>
+#include <exception>
 #include <stdexcept>
 #include <string>
+#include <thread>
 
 namespace qlight::bvh {
 namespace {
@@ -83,16 +87,26 @@ bool isDegenerateTriangle(const glm::vec3& p0, const glm::vec3& p1, const glm::v
 
 SceneBvh::SceneBvh() { writeHeader(); }
 
-uint32_t SceneBvh::addMesh(std::span<const glm::vec3> positions, std::span<const uint32_t> indices,
-                           const BuildOptions& options) {
+// One mesh's tree, built on its own (any thread) before it joins the concatenated arrays.
+struct MeshTree {
+  std::vector<PrimRef> prims;  // leaf order after the build
+  BuiltTree tree;
+  uint32_t meshTriangles = 0;
+};
+
+namespace {
+
+MeshTree buildMeshTree(std::span<const glm::vec3> positions, std::span<const uint32_t> indices,
+                       const BuildOptions& options) {
   if (indices.size() % 3 != 0) {
     throw std::runtime_error("engine/bvh/scene_bvh.cpp: index count " +
                              std::to_string(indices.size()) + " is not a multiple of 3");
   }
-  const uint32_t meshTriangles = static_cast<uint32_t>(indices.size() / 3);
-  std::vector<PrimRef> prims;
-  prims.reserve(meshTriangles);
-  for (uint32_t t = 0; t < meshTriangles; ++t) {
+  MeshTree out;
+  out.meshTriangles = static_cast<uint32_t>(indices.size() / 3);
+  std::vector<PrimRef>& prims = out.prims;
+  prims.reserve(out.meshTriangles);
+  for (uint32_t t = 0; t < out.meshTriangles; ++t) {
     glm::vec3 p[3];
     for (int k = 0; k < 3; ++k) {
       uint32_t index = indices[3 * t + k];
@@ -111,9 +125,54 @@ uint32_t SceneBvh::addMesh(std::span<const glm::vec3> positions, std::span<const
     prims.push_back(
         PrimRef{glm::min(p[0], glm::min(p[1], p[2])), t, glm::max(p[0], glm::max(p[1], p[2]))});
   }
+  if (!prims.empty()) out.tree = buildSah(prims, options);
+  return out;
+}
 
+}  // namespace
+
+uint32_t SceneBvh::addMesh(std::span<const glm::vec3> positions, std::span<const uint32_t> indices,
+                           const BuildOptions& options) {
+  return appendMesh(buildMeshTree(positions, indices, options), positions, indices);
+}
+
+void SceneBvh::addMeshes(std::span<const MeshInput> meshes, const BuildOptions& options) {
+  // Small meshes build one per thread; a large one (whose build is parallel itself) alone.
+  const uint32_t threads =
+      std::max(1u, std::min(options.threads, std::thread::hardware_concurrency()));
+  std::vector<MeshTree> trees(meshes.size());
+  std::vector<std::exception_ptr> errors(meshes.size());
+  BuildOptions single = options;
+  single.threads = 1;
+  std::atomic<size_t> next{0};
+  auto worker = [&] {
+    for (size_t i = next++; i < meshes.size(); i = next++) {
+      if (meshes[i].indices.size() / 3 >= kParallelBuildMinPrims) continue;
+      try {
+        trees[i] = buildMeshTree(meshes[i].positions, meshes[i].indices, single);
+      } catch (...) {
+        errors[i] = std::current_exception();
+      }
+    }
+  };
+  std::vector<std::thread> pool;
+  for (uint32_t t = 1; t < threads; ++t) pool.emplace_back(worker);
+  worker();
+  for (std::thread& t : pool) t.join();
+  for (size_t i = 0; i < meshes.size(); ++i) {
+    if (errors[i]) std::rethrow_exception(errors[i]);
+    if (meshes[i].indices.size() / 3 >= kParallelBuildMinPrims)
+      trees[i] = buildMeshTree(meshes[i].positions, meshes[i].indices, options);
+    appendMesh(std::move(trees[i]), meshes[i].positions, meshes[i].indices);
+  }
+}
+
+uint32_t SceneBvh::appendMesh(MeshTree built, std::span<const glm::vec3> positions,
+                              std::span<const uint32_t> indices) {
+  const std::vector<PrimRef>& prims = built.prims;
+  const BuiltTree& tree = built.tree;
   BlasInfo info;
-  info.meshTriangleCount = meshTriangles;
+  info.meshTriangleCount = built.meshTriangles;
   info.triangleOffset = static_cast<uint32_t>(flat_.triangleIndices.size());
   info.nodeOffset = blasNodeEnd_;
   if (uint64_t{info.triangleOffset} + prims.size() > shared::kBvhMaxTriangles) {
@@ -122,7 +181,6 @@ uint32_t SceneBvh::addMesh(std::span<const glm::vec3> positions, std::span<const
 
   flat_.nodes.resize(std::size_t{blasNodeEnd_} * kBvhNodeTexels);  // the top level goes stale
   if (!prims.empty()) {
-    BuiltTree tree = buildSah(prims, options);
     auto rebase = [&](uint32_t ref) {
       return globalRef(ref, info.nodeOffset, info.triangleOffset);
     };
@@ -149,6 +207,53 @@ uint32_t SceneBvh::addMesh(std::span<const glm::vec3> positions, std::span<const
   topLevel_.nodeOffset = blasNodeEnd_;
   writeHeader();
   return static_cast<uint32_t>(blases_.size() - 1);
+}
+
+void SceneBvh::refitMesh(uint32_t index, std::span<const glm::vec3> positions,
+                         std::span<const uint32_t> indices) {
+  BlasInfo& info = blases_.at(index);
+  if (indices.size() != std::size_t{info.meshTriangleCount} * 3)
+    throw std::runtime_error(
+        "engine/bvh/scene_bvh.cpp: refit with " + std::to_string(indices.size() / 3) +
+        " triangles of a mesh built with " + std::to_string(info.meshTriangleCount));
+  if (info.rootRef == 0) return;
+  for (uint32_t k = info.triangleOffset; k < info.triangleOffset + info.triangleCount; ++k) {
+    const uint32_t* tri = &indices[3 * std::size_t{flat_.triangleIndices[k]}];
+    for (int c = 0; c < 3; ++c) {
+      if (tri[c] >= positions.size() || !finite(positions[tri[c]]))
+        throw std::runtime_error("engine/bvh/scene_bvh.cpp: refit vertex " +
+                                 std::to_string(tri[c]) + " is missing or not finite");
+      glm::vec4& texel = flat_.triangles[3 * std::size_t{k} + c];
+      texel = glm::vec4(positions[tri[c]], texel.w);  // w: the triangle's index, kept
+    }
+  }
+  // Children come after their parents in a built tree, so one backward pass sees every
+  // child before its parent. Boxes are kept unpadded here and padded once when written.
+  auto leafBox = [&](uint32_t ref) {
+    Aabb box;
+    const uint32_t first = shared::bvhLeafFirst(ref);
+    for (uint32_t t = first; t < first + shared::bvhLeafCount(ref); ++t)
+      for (int c = 0; c < 3; ++c) box.grow(glm::vec3(flat_.triangles[3 * std::size_t{t} + c]));
+    return box;
+  };
+  std::vector<Aabb> boxes(info.nodeCount);
+  std::vector<std::array<Aabb, 2>> children(info.nodeCount);
+  for (uint32_t i = info.nodeCount; i-- > 0;) {
+    const std::size_t texel = std::size_t{info.nodeOffset + i} * kBvhNodeTexels;
+    for (int side = 0; side < 2; ++side) {
+      const uint32_t ref = std::bit_cast<uint32_t>(flat_.nodes[texel + 2 * side].w);
+      children[i][side] = (ref & kBvhLeafBit) ? leafBox(ref) : boxes.at(ref - info.nodeOffset);
+      const Aabb p = padded(children[i][side]);
+      flat_.nodes[texel + 2 * side] = point(p.min, ref);
+      flat_.nodes[texel + 2 * side + 1] = point(p.max, 0);
+    }
+    boxes[i] = unite(children[i][0], children[i][1]);
+  }
+  const bool innerRoot = !(info.rootRef & kBvhLeafBit);
+  const Aabb bounds = innerRoot ? boxes[0] : leafBox(info.rootRef);
+  info.bounds = padded(bounds);
+  info.rootChildren[0] = innerRoot ? padded(children[0][0]) : info.bounds;
+  info.rootChildren[1] = innerRoot ? padded(children[0][1]) : info.bounds;
 }
 
 void SceneBvh::rebuildTopLevel(std::span<const Instance> instances) {

@@ -3,10 +3,9 @@
 // (animated rigid nodes), in time O(n log n) in the instance count.
 //
 // Usage: addMesh() per mesh, then rebuildTopLevel(instances) each time the
-// instance list or a transform changes; upload flat(). After a top-level
-// rebuild only the header node, the node tail from topLevelNodeOffset() and
-// the instance array change. addMesh() empties the top level until the next
-// rebuildTopLevel().
+// instance list or a transform changes (after refitMesh() for deformed meshes); upload flat().
+// After a top-level rebuild only the header node, the node tail from topLevelNodeOffset() and the
+// instance array change. addMesh() empties the top level until the next rebuildTopLevel().
 #pragma once
 
 #include <cstdint>
@@ -52,6 +51,14 @@ struct TopLevelInfo {
 // leaves them out.
 bool isDegenerateTriangle(const glm::vec3& p0, const glm::vec3& p1, const glm::vec3& p2);
 
+struct MeshTree;  // a mesh's built tree before it joins the arrays (scene_bvh.cpp)
+
+// One mesh for addMeshes.
+struct MeshInput {
+  std::span<const glm::vec3> positions;
+  std::span<const uint32_t> indices;
+};
+
 class SceneBvh {
  public:
   SceneBvh();
@@ -61,6 +68,19 @@ class SceneBvh {
   // out of range, a non-finite position or a count not divisible by 3.
   uint32_t addMesh(std::span<const glm::vec3> positions, std::span<const uint32_t> indices,
                    const BuildOptions& options = {});
+
+  // addMesh for each mesh in order (BLAS i is meshes[i]), the trees built on
+  // options.threads threads: small meshes one per thread, large ones (whose
+  // build is parallel itself) one after the other. Same result as addMesh.
+  void addMeshes(std::span<const MeshInput> meshes, const BuildOptions& options = {});
+
+  // Moves a BLAS's vertices (a skinned or morphed mesh: same indices, new positions) and
+  // refits its node boxes bottom-up; its layout (nodes, triangle order) stays, so nothing
+  // else moves. Triangles left out as degenerate when it was built stay out. Call
+  // rebuildTopLevel afterwards: the instances' boxes changed. Throws on a position count
+  // that does not match the indices, or a non-finite position.
+  void refitMesh(uint32_t blas, std::span<const glm::vec3> positions,
+                 std::span<const uint32_t> indices);
 
   // Rebuilds the top level and the instance array; BLASes stay untouched.
   // Instances with a singular or non-finite transform, or an empty mesh, get
@@ -75,6 +95,8 @@ class SceneBvh {
   uint32_t topLevelNodeOffset() const { return blasNodeEnd_; }
 
  private:
+  uint32_t appendMesh(MeshTree built, std::span<const glm::vec3> positions,
+                      std::span<const uint32_t> indices);
   void writeHeader();
 
   FlatBvh flat_;

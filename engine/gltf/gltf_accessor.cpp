@@ -274,4 +274,36 @@ std::vector<uint32_t> readIndexAccessor(const tinygltf::Model& model, int index,
       model, index, 1, [](double v, size_t) { return uint32_t(v); }, ctx);
 }
 
+std::vector<uint32_t> readUnsignedAccessor(const tinygltf::Model& model, int index, int components,
+                                           const std::string& use, LoadContext& ctx) {
+  const tinygltf::Accessor& a = checkedAccessor(model, index, use, ctx);
+  const std::string owner = use + ": accessor " + std::to_string(index);
+  checkCount(a, index, ctx);
+  if (componentsInType(a.type) != components) ctx.fail(owner + " must be " + typeName(components));
+  if ((a.componentType != TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE &&
+       a.componentType != TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT) ||
+      a.normalized)
+    ctx.fail(owner + " must be UNSIGNED_BYTE or UNSIGNED_SHORT, not normalized");
+  return readElements<uint32_t>(
+      model, index, components, [](double v, size_t) { return uint32_t(v); }, ctx);
+}
+
+std::vector<float> readMat4Accessor(const tinygltf::Model& model, int index, const std::string& use,
+                                    LoadContext& ctx) {
+  const tinygltf::Accessor& a = checkedAccessor(model, index, use, ctx);
+  const std::string owner = use + ": accessor " + std::to_string(index);
+  checkCount(a, index, ctx);
+  if (a.type != TINYGLTF_TYPE_MAT4 || a.componentType != TINYGLTF_COMPONENT_TYPE_FLOAT)
+    ctx.fail(owner + " must be a MAT4 of FLOAT");
+  return readElements<float>(
+      model, index, 16,
+      [&](double v, size_t element) {
+        if (!std::isfinite(v))
+          ctx.fail("accessor " + std::to_string(index) +
+                   " holds a non-finite value (NaN or Inf) at element " + std::to_string(element));
+        return float(v);
+      },
+      ctx);
+}
+
 }  // namespace qlight::gltf::detail

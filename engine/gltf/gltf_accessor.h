@@ -31,6 +31,15 @@ std::vector<float> readFloatAccessor(const tinygltf::Model& model, int accessor,
 std::vector<uint32_t> readIndexAccessor(const tinygltf::Model& model, int accessor,
                                         const std::string& use, LoadContext& ctx);
 
+// VECn UNSIGNED_BYTE/SHORT accessor, not normalized (JOINTS_0), as count * n uint32 values.
+std::vector<uint32_t> readUnsignedAccessor(const tinygltf::Model& model, int accessor,
+                                           int components, const std::string& use,
+                                           LoadContext& ctx);
+
+// MAT4 FLOAT accessor (inverseBindMatrices) as count * 16 floats, column-major.
+std::vector<float> readMat4Accessor(const tinygltf::Model& model, int accessor,
+                                    const std::string& use, LoadContext& ctx);
+
 // Checks an accessor this loader does not read (e.g. COLOR_0) stays inside its buffers.
 void checkAccessorBounds(const tinygltf::Model& model, int accessor, const std::string& use,
                          LoadContext& ctx);

@@ -1,5 +1,6 @@
 // glTF animations into AnimationAsset: node translation/rotation/scale channels with their
-// sampler's keys copied in; morph-weight channels are skipped with a warning.
+// sampler's keys copied in, and morph-target `weights` channels (their node's mesh must have
+// targets).
 #include <algorithm>
 
 #include "engine/gltf/gltf_accessor.h"
@@ -23,6 +24,8 @@ bool pathOf(const std::string& name, AnimationPath& path) {
     path = AnimationPath::Rotation;
   else if (name == "scale")
     path = AnimationPath::Scale;
+  else if (name == "weights")
+    path = AnimationPath::Weights;
   else
     return false;
   return true;
@@ -66,11 +69,35 @@ void convertAnimations(const tinygltf::Model& model, SceneAsset& scene, LoadCont
           ctx.fail(samplerName + " key times are not strictly increasing (key " +
                    std::to_string(k) + ")");
 
+      if (channel.path == AnimationPath::Weights) {
+        const int mesh = scene.nodes[channel.node].mesh;
+        channel.weightCount =
+            mesh >= 0 ? uint32_t(scene.meshes[size_t(mesh)].deform.targets.size()) : 0u;
+        if (channel.weightCount == 0) {
+          ctx.warn(owner + " animates the weights of node " + std::to_string(channel.node) +
+                   ", whose mesh has no morph targets; skipped");
+          continue;
+        }
+      }
+
       const bool rotation = channel.path == AnimationPath::Rotation;
+      const size_t perKey = channel.interpolation == Interpolation::CubicSpline ? 3 : 1;
+      if (channel.path == AnimationPath::Weights) {
+        channel.weights =
+            readFloatAccessor(model, sampler.output, {1, true}, samplerName + " output", ctx);
+        const size_t expected = channel.times.size() * perKey * channel.weightCount;
+        if (channel.weights.size() != expected)
+          ctx.fail(samplerName + " output has " + std::to_string(channel.weights.size()) +
+                   " weights for " + std::to_string(channel.times.size()) + " keys of " +
+                   std::to_string(channel.weightCount) + " morph targets (expected " +
+                   std::to_string(expected) + ")");
+        out.duration = std::max(out.duration, channel.times.back());
+        out.channels.push_back(std::move(channel));
+        continue;
+      }
       const int components = rotation ? 4 : 3;
       const std::vector<float> values = readFloatAccessor(
           model, sampler.output, {components, rotation}, samplerName + " output", ctx);
-      const size_t perKey = channel.interpolation == Interpolation::CubicSpline ? 3 : 1;
       const size_t expected = channel.times.size() * perKey;
       if (values.size() / components != expected)
         ctx.fail(samplerName + " output has " + std::to_string(values.size() / components) +

@@ -26,6 +26,12 @@ void convertCameras(const tinygltf::Model& model, SceneAsset& scene, LoadContext
 void convertLights(const tinygltf::Model& model, SceneAsset& scene, LoadContext& ctx);
 void replaceOrthographicCameras(const tinygltf::Model& model, SceneAsset& scene, LoadContext& ctx);
 
+// After nodes: skins and the nodes' skin and morph weights (deforming nodes get meshes of
+// their own), then EXT_mesh_gpu_instancing's instance transforms.
+void convertSkins(const tinygltf::Model& model, SceneAsset& scene, LoadContext& ctx);
+void convertMeshInstancing(const tinygltf::Model& model, SceneAsset& scene, LoadContext& ctx);
+
+// After skins: animation channels (morph weights need the targeted node's mesh).
 void convertAnimations(const tinygltf::Model& model, SceneAsset& scene, LoadContext& ctx);
 
 }  // namespace qlight::gltf::detail

@@ -241,9 +241,9 @@ void checkImages(const json& root, LoadContext& ctx) {
 }  // namespace
 
 bool isSupportedRequiredExtension(const std::string& name) {
-  return name == "KHR_lights_punctual" || name == "KHR_materials_emissive_strength" ||
-         name == "KHR_materials_specular" || name == "KHR_texture_transform" ||
-         name == "KHR_materials_unlit";
+  return name == "KHR_lights_punctual" || name == "EXT_mesh_gpu_instancing" ||
+         name == "KHR_materials_emissive_strength" || name == "KHR_materials_specular" ||
+         name == "KHR_texture_transform" || name == "KHR_materials_unlit";
 }
 
 CheckedGltfFile readAndCheckGltfFile(const std::filesystem::path& path, LoadContext& ctx) {

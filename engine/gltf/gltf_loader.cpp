@@ -8,6 +8,7 @@
 #include "engine/gltf/gltf_file_check.h"
 #include "engine/scene/animation.h"
 #include "engine/scene/tangents.h"
+#include "engine/scene/deform.h"
 #include "engine/scene/transforms.h"
 
 namespace qlight::gltf {
@@ -64,11 +65,13 @@ SceneAsset convertCheckedFile(const detail::CheckedGltfFile& file,
   detail::convertMeshes(model, scene, ctx);
   qlight::scene::generateMissingTangents(scene);  // for normal maps, where the file has no TANGENT
   detail::convertNodes(model, scene, ctx);
+  detail::convertSkins(model, scene, ctx);
+  detail::convertMeshInstancing(model, scene, ctx);
   detail::convertCameras(model, scene, ctx);
   detail::convertLights(model, scene, ctx);
   detail::convertAnimations(model, scene, ctx);
 
-  scene.bounds = worldBounds(scene, worldTransforms(scene, animate(scene, 0.0f)));
+  scene.bounds = posedWorldBounds(scene, 0.0f);
   detail::replaceOrthographicCameras(model, scene, ctx);
   scene.warnings = std::move(ctx.warnings());
   return scene;

@@ -1,25 +1,16 @@
 // glTF meshes into MeshAsset: triangle primitives concatenated, strips and fans turned into
-// lists, flat normals where the file has none, morph targets applied at the default weights.
+// lists, flat normals where the file has none, morph targets applied at the default weights
+// (and kept, with the skin attributes, for animation: gltf_mesh_deform.cpp).
 #include <cmath>
 #include <map>
 #include <numeric>
 
 #include "engine/gltf/gltf_accessor.h"
 #include "engine/gltf/gltf_convert.h"
+#include "engine/gltf/gltf_primitive.h"
 
 namespace qlight::gltf::detail {
 namespace {
-
-// One primitive's vertices and triangles before they join the mesh.
-struct PrimitiveData {
-  std::vector<glm::vec3> positions;
-  std::vector<glm::vec3> normals;  // empty: generate flat normals
-  std::vector<glm::vec2> uv0;
-  std::vector<glm::vec2> uv1;  // empty: none (as the next two)
-  std::vector<glm::vec4> colors;
-  std::vector<glm::vec4> tangents;
-  std::vector<uint32_t> triangles;  // 3 per triangle
-};
 
 std::vector<glm::vec3> toVec3(const std::vector<float>& f) {
   std::vector<glm::vec3> out(f.size() / 3);
@@ -122,35 +113,6 @@ std::vector<uint32_t> triangulate(const std::vector<uint32_t>& v, int mode,
   return out;
 }
 
-void applyMorphTargets(const tinygltf::Model& model, const tinygltf::Mesh& mesh,
-                       const tinygltf::Primitive& prim, const std::string& owner,
-                       PrimitiveData& data, LoadContext& ctx) {
-  if (prim.targets.empty()) return;
-  if (!mesh.weights.empty() && mesh.weights.size() != prim.targets.size())
-    ctx.fail(owner + " has " + std::to_string(prim.targets.size()) +
-             " morph targets but the mesh has " + std::to_string(mesh.weights.size()) + " weights");
-  ctx.warn(owner +
-           " morph targets are applied at the mesh's default weights; weight "
-           "animation is not supported");
-  for (size_t t = 0; t < prim.targets.size(); ++t) {
-    const double weight = mesh.weights.empty() ? 0.0 : mesh.weights[t];
-    ctx.requireFinite(weight, owner + " morph weight");
-    const std::string use = owner + " target " + std::to_string(t);
-    for (const auto& [name, accessor] : prim.targets[t]) {
-      if (name != "POSITION" && name != "NORMAL") {
-        checkAccessorBounds(model, accessor, use + " " + name, ctx);
-        continue;
-      }
-      const std::vector<glm::vec3> deltas =
-          readVec3Attribute(model, accessor, data.positions.size(), use + " " + name, ctx);
-      if (weight == 0.0) continue;
-      std::vector<glm::vec3>& base = name == "POSITION" ? data.positions : data.normals;
-      if (base.empty()) continue;  // normal deltas without normals: flat normals come later
-      for (size_t i = 0; i < base.size(); ++i) base[i] += float(weight) * deltas[i];
-    }
-  }
-}
-
 // Unit normals; a zero-length one is replaced by the area-weighted normal of its faces.
 void normalizeNormals(PrimitiveData& data) {
   std::vector<glm::vec3> faceSum;
@@ -180,6 +142,8 @@ void normalizeNormals(PrimitiveData& data) {
 void makeFlat(PrimitiveData& data) {
   PrimitiveData flat;
   const size_t count = data.triangles.size();
+  flat.deform = std::move(data.deform);
+  reorderDeform(flat.deform, data.triangles);
   flat.positions.reserve(count);
   flat.normals.reserve(count);
   flat.uv0.reserve(count);
@@ -201,7 +165,7 @@ void makeFlat(PrimitiveData& data) {
 }
 
 struct VertexKey {
-  int position, normal, uv, uv1, color, tangent;
+  int position, normal, uv, uv1, color, tangent, joints, weights;
   friend auto operator<=>(const VertexKey&, const VertexKey&) = default;
 };
 
@@ -266,12 +230,13 @@ void convertMeshes(const tinygltf::Model& model, SceneAsset& scene, LoadContext&
           data.colors = readColorAttribute(model, accessor, vertexCount, use, ctx);
         } else if (name == "TANGENT") {
           data.tangents = readTangentAttribute(model, accessor, vertexCount, use, ctx);
-        } else if (name != "POSITION") {
+        } else if (name != "POSITION" && !isSkinAttribute(name)) {
           checkAccessorBounds(model, accessor, use, ctx);
         }
       }
       if (data.uv0.empty()) data.uv0.assign(vertexCount, glm::vec2(0.0f));
-      applyMorphTargets(model, mesh, prim, owner, data, ctx);
+      readSkinAttributes(model, prim, owner, data, ctx);
+      readMorphTargets(model, mesh, prim, owner, data, ctx);
 
       std::vector<uint32_t> order;
       if (prim.indices >= 0) {
@@ -306,7 +271,8 @@ void convertMeshes(const tinygltf::Model& model, SceneAsset& scene, LoadContext&
       // set, one index range per material) share their vertices here too.
       const VertexKey key{attributeOf(prim, "POSITION"),   attributeOf(prim, "NORMAL"),
                           attributeOf(prim, "TEXCOORD_0"), attributeOf(prim, "TEXCOORD_1"),
-                          attributeOf(prim, "COLOR_0"),    attributeOf(prim, "TANGENT")};
+                          attributeOf(prim, "COLOR_0"),    attributeOf(prim, "TANGENT"),
+                          attributeOf(prim, "JOINTS_0"),   attributeOf(prim, "WEIGHTS_0")};
       const bool shareable = key.normal >= 0 && prim.targets.empty();
       auto shared = shareable ? sharedVertices.find(key) : sharedVertices.end();
       uint32_t base;
@@ -315,6 +281,8 @@ void convertMeshes(const tinygltf::Model& model, SceneAsset& scene, LoadContext&
       } else {
         if (data.normals.empty()) {
           makeFlat(data);
+          for (size_t t = 0; t < data.triangles.size() / 3; ++t)
+            out.deform.flatTriangles.push_back(uint32_t(out.indices.size() / 3 + t));
         } else {
           normalizeNormals(data);
         }
@@ -326,12 +294,14 @@ void convertMeshes(const tinygltf::Model& model, SceneAsset& scene, LoadContext&
         out.positions.insert(out.positions.end(), data.positions.begin(), data.positions.end());
         out.normals.insert(out.normals.end(), data.normals.begin(), data.normals.end());
         out.uv0.insert(out.uv0.end(), data.uv0.begin(), data.uv0.end());
+        appendDeform(out, data.deform, base);
         if (shareable) sharedVertices.emplace(key, base);
       }
       for (uint32_t v : data.triangles) out.indices.push_back(base + v);
       out.triangleMaterials.insert(out.triangleMaterials.end(), data.triangles.size() / 3,
                                    material);
     }
+    finishDeform(out, mesh, "mesh " + std::to_string(m), ctx);
     if (out.positions.empty()) {
       ctx.warn("mesh " + std::to_string(m) + " has no triangle primitives");
     } else {

@@ -112,7 +112,6 @@ void convertNodes(const tinygltf::Model& model, SceneAsset& scene, LoadContext& 
     out.mesh = checkedIndex(node.mesh, model.meshes.size(), owner, "mesh", ctx);
     out.camera = checkedIndex(node.camera, model.cameras.size(), owner, "camera", ctx);
     out.light = checkedIndex(nodeLight(node, owner, ctx), model.lights.size(), owner, "light", ctx);
-    if (node.skin >= 0) ctx.warn(owner + " skin is ignored (no skinning)");
   }
   for (size_t i = 0; i < count; ++i) {
     for (int child : model.nodes[i].children) {

@@ -185,6 +185,7 @@ json writeAnimation(const AnimationAsset& a, BufferBuilder& buffer) {
   static const char* kInterpolations[] = {"STEP", "LINEAR", "CUBICSPLINE"};
   json samplers = json::array(), channels = json::array();
   for (const AnimationChannel& c : a.channels) {
+    if (c.path == AnimationPath::Weights) continue;  // morph targets are not written
     const int input = buffer.addFloats(c.times, "SCALAR", 0, true);
     int output;
     if (c.path == AnimationPath::Rotation) {

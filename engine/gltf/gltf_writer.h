@@ -16,7 +16,8 @@ using namespace ::qlight::scene;  // glTF I/O reads and writes the scene's plain
 // KHR_materials_emissive_strength; a specularFactor other than 1 is written as
 // KHR_materials_specular), nodes, perspective cameras, KHR_lights_punctual lights,
 // node TRS animations with their interpolation, the scene's roots. Not written: textures
-// (texture references are dropped). Throws std::runtime_error naming the path on I/O errors.
+// (texture references are dropped), skins, morph targets and their weights channels,
+// EXT_mesh_gpu_instancing. Throws std::runtime_error naming the path on I/O errors.
 std::string toGltfJson(const SceneAsset& scene, const std::string& generator = "qlight");
 void saveGltf(const SceneAsset& scene, const std::filesystem::path& path,
               const std::string& generator = "qlight");

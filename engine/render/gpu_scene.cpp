@@ -1,6 +1,7 @@
 #include "engine/render/gpu_scene.h"
 
 #include <algorithm>
+#include <chrono>
 #include <cmath>
 #include <cstdio>
 #include <cstring>
@@ -9,6 +10,7 @@
 #include "engine/render/scene_packing.h"
 #include "engine/render/environment_tables.h"
 #include "shaders/shared/environment.h"
+#include "shaders/shared/bvh_types.h"
 #include "shaders/shared/sampling.h"
 
 namespace qlight::render {
@@ -49,9 +51,39 @@ GpuScene::GpuScene(const gpu::Context& ctx, const scene::SceneAsset& asset,
     : ctx_(ctx), asset_(asset), options_(options) {
   center_ = asset.bounds.center();
   radius_ = std::max(asset.bounds.radius(), 1e-3f);
+  using Clock = std::chrono::steady_clock;
+  const auto start = Clock::now();
+  requireGeometryFits();
   uploadStatic();
   uploadEnvironment();
+  const auto blasStart = Clock::now();
   accel_.buildMeshes(asset.meshes);
+  blasBuildSeconds_ = std::chrono::duration<double>(Clock::now() - blasStart).count();
+  buildSeconds_ = std::chrono::duration<double>(Clock::now() - start).count();
+  poseVersions_.assign(asset.meshes.size(), 0);
+  posedPositions_.resize(asset.meshes.size());
+}
+
+// Refused before anything is built or allocated, in one line naming the geometry and the
+// limit: the largest texel buffers are the BVH's triangles (3 texels each) and the vertices
+// (2 each); the BVH's node layout addresses 2^28 triangles.
+void GpuScene::requireGeometryFits() const {
+  uint64_t vertices = 0, triangles = 0;
+  for (const scene::MeshAsset& m : asset_.meshes) {
+    vertices += m.positions.size();
+    triangles += m.triangleCount();
+  }
+  const std::string what = "the scene's geometry (" + std::to_string(triangles) + " triangles, " +
+                           std::to_string(vertices) + " vertices in " +
+                           std::to_string(asset_.meshes.size()) +
+                           " meshes; use fewer or simpler meshes)";
+  if (triangles > shared::kBvhMaxTriangles)
+    throw std::runtime_error(what + " is larger than qlight's BVH allows: " +
+                             std::to_string(shared::kBvhMaxTriangles) + " triangles");
+  // Bytes: vertices, triangle table, BVH triangles and at most one node per triangle.
+  const uint64_t bytes =
+      vertices * sizeof(shared::GpuVertex) + triangles * (sizeof(GpuTriangle) + 3 * 16 + 4 * 16);
+  ctx_.requireBufferFits(what, bytes, false, std::max(3 * triangles, 2 * vertices));
 }
 
 void GpuScene::uploadEnvironment() {
@@ -156,14 +188,14 @@ void GpuScene::uploadLights(const SceneDraw& draw) {
   // Emissive triangles, in world space at this frame.
   for (const MeshDraw& d : draw.meshes) {
     const scene::MeshAsset& mesh = asset_.meshes[d.mesh];
+    const std::vector<glm::vec3>& positions = positionsOf(d.mesh);
     bool mirrored = glm::determinant(glm::mat3(d.worldFromObject)) < 0.0f;
     for (size_t t = 0; t < mesh.triangleCount(); ++t) {
       const scene::MaterialAsset& m = asset_.materials[mesh.triangleMaterials[t]];
       if (!m.isEmissive()) continue;
       glm::vec3 p[3];
       for (int k = 0; k < 3; ++k)
-        p[k] =
-            glm::vec3(d.worldFromObject * glm::vec4(mesh.positions[mesh.indices[t * 3 + k]], 1.0f));
+        p[k] = glm::vec3(d.worldFromObject * glm::vec4(positions[mesh.indices[t * 3 + k]], 1.0f));
       GpuLight l{};
       l.type = shared::kLightTriangle;
       l.position = p[0];
@@ -238,18 +270,46 @@ void GpuScene::uploadLights(const SceneDraw& draw) {
       std::make_unique<gpu::BufferView>(ctx_, *triangleBuffer_, VK_FORMAT_R32G32B32A32_UINT);
 }
 
+const std::vector<glm::vec3>& GpuScene::positionsOf(uint32_t mesh) const {
+  return posedPositions_[mesh].empty() ? asset_.meshes[mesh].positions : posedPositions_[mesh];
+}
+
+bool GpuScene::applyDeformations(const std::vector<DeformedDraw>& deformed) {
+  bool changed = false;
+  for (const DeformedDraw& d : deformed) {
+    if (d.mesh >= asset_.meshes.size()) throw std::out_of_range("deformed draw names no mesh");
+    const scene::MeshAsset& mesh = asset_.meshes[d.mesh];
+    if (d.positions.size() != mesh.positions.size() || d.normals.size() != mesh.positions.size())
+      throw std::invalid_argument("deformed draw of mesh " + std::to_string(d.mesh) +
+                                  " has another vertex count than the mesh");
+    if (poseVersions_[d.mesh] == d.version) continue;
+    poseVersions_[d.mesh] = d.version;
+    posedPositions_[d.mesh].assign(d.positions.begin(), d.positions.end());
+    std::vector<shared::GpuVertex> vertices;
+    vertices.reserve(mesh.positions.size());
+    for (size_t i = 0; i < mesh.positions.size(); ++i)
+      vertices.push_back(packVertex(mesh, i, d.positions[i], d.normals[i]));
+    vertices_->upload(ctx_, std::span<const shared::GpuVertex>(vertices),
+                      VkDeviceSize(meshFirstVertex_[d.mesh]) * sizeof(shared::GpuVertex));
+    accel_.refitMesh(d.mesh, d.positions, mesh.indices);
+    changed = true;
+  }
+  return changed;
+}
+
 void GpuScene::update(const SceneDraw& draw) {
   for (const MeshDraw& d : draw.meshes)
     if (d.mesh >= asset_.meshes.size()) throw std::out_of_range("mesh draw names no mesh");
+  const bool trianglesMoved = applyDeformations(draw.deformed) || !bvhTris_;
   accel_.buildInstances(draw.meshes);
   surfaceArea_ = 0.0f;
   for (const MeshDraw& d : draw.meshes) {
     const scene::MeshAsset& mesh = asset_.meshes[d.mesh];
+    const std::vector<glm::vec3>& positions = positionsOf(d.mesh);
     for (size_t t = 0; t < mesh.triangleCount(); ++t) {
       glm::vec3 p[3];
       for (int k = 0; k < 3; ++k)
-        p[k] =
-            glm::vec3(d.worldFromObject * glm::vec4(mesh.positions[mesh.indices[t * 3 + k]], 1.0f));
+        p[k] = glm::vec3(d.worldFromObject * glm::vec4(positions[mesh.indices[t * 3 + k]], 1.0f));
       surfaceArea_ += 0.5f * glm::length(glm::cross(p[1] - p[0], p[2] - p[0]));
     }
   }
@@ -269,15 +329,29 @@ void GpuScene::update(const SceneDraw& draw) {
   }
   instances_ = makeBuffer(ctx_, instances, "scene.instances");
   constexpr VkBufferUsageFlags texel = VK_BUFFER_USAGE_UNIFORM_TEXEL_BUFFER_BIT;
+  bvhNodesView_.reset();
+  bvhInstancesView_.reset();
   bvhNodes_ = makeBuffer(ctx_, accel_.nodeTexels(), "bvh.nodes", texel);
-  bvhTris_ = makeBuffer(ctx_, accel_.triangleTexels(), "bvh.triangles", texel);
   bvhInstances_ = makeBuffer(ctx_, accel_.instanceTexels(), "bvh.instances", texel);
   bvhNodesView_ =
       std::make_unique<gpu::BufferView>(ctx_, *bvhNodes_, VK_FORMAT_R32G32B32A32_SFLOAT);
-  bvhTrisView_ = std::make_unique<gpu::BufferView>(ctx_, *bvhTris_, VK_FORMAT_R32G32B32A32_SFLOAT);
   bvhInstancesView_ =
       std::make_unique<gpu::BufferView>(ctx_, *bvhInstances_, VK_FORMAT_R32G32B32A32_SFLOAT);
+  if (trianglesMoved) {  // rigid motion leaves the object-space triangles as they are
+    bvhTrisView_.reset();
+    bvhTris_ = makeBuffer(ctx_, accel_.triangleTexels(), "bvh.triangles", texel);
+    bvhTrisView_ =
+        std::make_unique<gpu::BufferView>(ctx_, *bvhTris_, VK_FORMAT_R32G32B32A32_SFLOAT);
+  }
   uploadLights(draw);
+}
+
+uint64_t GpuScene::memoryBytes() const {
+  uint64_t bytes = 0;
+  for (const auto* b : {&vertices_, &triangleBuffer_, &materials_, &textures_, &texels_, &bvhNodes_,
+                        &bvhTris_, &bvhInstances_, &instances_, &lightBuffer_, &lightCdf_})
+    if (*b) bytes += (*b)->size();
+  return bytes;
 }
 
 void GpuScene::bind(gpu::PassBuilder& pass) const {

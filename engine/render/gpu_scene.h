@@ -1,6 +1,7 @@
 // The scene on the GPU: geometry, materials and textures uploaded once; the
 // two-level BVH, instance table and world-space light list refreshed when
-// instances or lights move.
+// instances or lights move; a deformed mesh's vertices re-uploaded and its
+// bottom-level BVH refitted when its pose changes.
 #pragma once
 #include <memory>
 
@@ -25,7 +26,8 @@ class GpuScene {
   GpuScene(const gpu::Context& ctx, const scene::SceneAsset& asset,
            SceneLightingOptions options = {});
 
-  // Rebuilds the top-level BVH, the instance table and the light list. Replaces
+  // Takes the new poses of deformed meshes (vertices and BLAS refit), rebuilds the
+  // top-level BVH, the instance table and the light list. Replaces and writes
   // buffers, so no recorded frame that uses them may still be in flight.
   void update(const SceneDraw& draw);
 
@@ -39,6 +41,12 @@ class GpuScene {
   // The user's environment is the last light (it has power: a black one is left out).
   bool hasEnvironment() const { return environmentLit_; }
   uint32_t triangleCount() const { return triangleCount_; }
+  // Device memory of every scene buffer (geometry, BVH, materials, textures, lights).
+  uint64_t memoryBytes() const;
+  // Wall time of building the bottom-level BVHs, and of the whole construction (uploads
+  // included), in seconds.
+  double blasBuildSeconds() const { return blasBuildSeconds_; }
+  double buildSeconds() const { return buildSeconds_; }
   float surfaceArea() const { return surfaceArea_; }
   // Features the path tracing passes are specialized on.
   bool hasTextures() const { return hasTextures_; }
@@ -56,11 +64,15 @@ class GpuScene {
   }
 
  private:
+  void requireGeometryFits() const;
   void uploadStatic();
   void uploadEnvironment();
   void uploadLights(const SceneDraw& draw);
   // The sky light of the user's environment, or of the fallback; power 0 when black.
   shared::GpuLight skyLight(const scene::EnvironmentAsset& env) const;
+  bool applyDeformations(const std::vector<DeformedDraw>& deformed);
+  // The mesh's positions as last posed (its file positions until it deforms).
+  const std::vector<glm::vec3>& positionsOf(uint32_t mesh) const;
 
   const gpu::Context& ctx_;
   const scene::SceneAsset& asset_;
@@ -68,6 +80,8 @@ class GpuScene {
   std::vector<uint32_t> meshFirstTriangle_;  // into the GpuTriangle array
   std::vector<uint32_t> meshFirstVertex_;
   std::vector<shared::GpuTriangle> triangles_;
+  std::vector<uint64_t> poseVersions_;  // per mesh: the DeformedDraw version uploaded
+  std::vector<std::vector<glm::vec3>> posedPositions_;  // per mesh; empty until it deforms
   SceneAccel accel_;
   std::vector<shared::GpuLight> lights_;
   uint32_t lightCount_ = 0;
@@ -78,6 +92,7 @@ class GpuScene {
   glm::vec3 center_{0.0f};
   float radius_ = 1.0f;
   float surfaceArea_ = 0.0f;
+  double blasBuildSeconds_ = 0.0, buildSeconds_ = 0.0;
   bool hasTextures_ = false;
   bool hasVertexExtras_ = false;
   bool hasNonTriangleLights_ = false;

@@ -15,7 +15,14 @@ SceneAccel::SceneAccel(SceneAccel&&) noexcept = default;
 SceneAccel& SceneAccel::operator=(SceneAccel&&) noexcept = default;
 
 void SceneAccel::buildMeshes(const std::vector<scene::MeshAsset>& meshes) {
-  for (const scene::MeshAsset& m : meshes) impl_->bvh.addMesh(m.positions, m.indices);
+  std::vector<bvh::MeshInput> inputs;
+  for (const scene::MeshAsset& m : meshes) inputs.push_back({m.positions, m.indices});
+  impl_->bvh.addMeshes(inputs);
+}
+
+void SceneAccel::refitMesh(uint32_t mesh, std::span<const glm::vec3> positions,
+                           std::span<const uint32_t> indices) {
+  impl_->bvh.refitMesh(mesh, positions, indices);
 }
 
 void SceneAccel::buildInstances(const std::vector<MeshDraw>& draws) {

@@ -19,6 +19,9 @@ class SceneAccel {
   SceneAccel& operator=(SceneAccel&&) noexcept;
 
   void buildMeshes(const std::vector<scene::MeshAsset>& meshes);
+  // A deformed mesh's new positions (same indices): its BLAS is refitted.
+  void refitMesh(uint32_t mesh, std::span<const glm::vec3> positions,
+                 std::span<const uint32_t> indices);
   void buildInstances(const std::vector<MeshDraw>& draws);
 
   const std::vector<glm::vec4>& nodeTexels() const;

@@ -2,6 +2,7 @@
 // and punctual lights with their world transforms, and the camera.
 #pragma once
 #include <glm/glm.hpp>
+#include <span>
 #include <vector>
 
 #include "engine/scene/scene_asset.h"
@@ -11,6 +12,16 @@ namespace qlight::render {
 struct MeshDraw {
   uint32_t mesh = 0;
   glm::mat4 worldFromObject{1.0f};
+};
+
+// A mesh whose vertices its skin or morph weights re-posed, in the space its MeshDraws place
+// it (world space for skins: their MeshDraw is the identity). The spans point into the ECS and
+// hold until the next SceneWorld::advance.
+struct DeformedDraw {
+  uint32_t mesh = 0;
+  uint64_t version = 0;  // grows with each new pose
+  std::span<const glm::vec3> positions;
+  std::span<const glm::vec3> normals;
 };
 
 struct PunctualDraw {
@@ -29,6 +40,7 @@ struct CameraView {
 struct SceneDraw {
   std::vector<MeshDraw> meshes;
   std::vector<PunctualDraw> lights;
+  std::vector<DeformedDraw> deformed;
 };
 
 // A camera looking down -Z of worldFromCamera (glTF convention).

@@ -20,6 +20,11 @@ bool hasExtras(const scene::MeshAsset& mesh) {
 
 }  // namespace
 
+shared::GpuVertex packVertex(const scene::MeshAsset& mesh, size_t i, glm::vec3 position,
+                             glm::vec3 normal) {
+  return {position, mesh.uv0[i].x, normal, mesh.uv0[i].y};
+}
+
 shared::GpuMaterial packMaterial(const scene::MaterialAsset& m) {
   shared::GpuMaterial g{};
   g.baseColor = m.baseColorFactor;
@@ -53,8 +58,9 @@ PackedVertices packVertices(const std::vector<scene::MeshAsset>& meshes) {
   out.texels.reserve(2 * vertexCount);
   for (const scene::MeshAsset& mesh : meshes)
     for (size_t i = 0; i < mesh.positions.size(); ++i) {
-      out.texels.emplace_back(mesh.positions[i], mesh.uv0[i].x);
-      out.texels.emplace_back(mesh.normals[i], mesh.uv0[i].y);
+      const shared::GpuVertex v = packVertex(mesh, i, mesh.positions[i], mesh.normals[i]);
+      out.texels.emplace_back(v.position, v.u);
+      out.texels.emplace_back(v.normal, v.v);
     }
   for (size_t m = 0; m < meshes.size(); ++m) {
     const scene::MeshAsset& mesh = meshes[m];

@@ -9,6 +9,10 @@
 
 namespace qlight::render {
 
+// One place that turns a mesh's vertex into the GPU's (static and deformed meshes alike).
+shared::GpuVertex packVertex(const scene::MeshAsset& mesh, size_t i, glm::vec3 position,
+                             glm::vec3 normal);
+
 shared::GpuMaterial packMaterial(const scene::MaterialAsset& m);
 bool usesTextures(const scene::MaterialAsset& m);
 

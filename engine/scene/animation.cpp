@@ -70,7 +70,47 @@ glm::vec4 sampleChannel(const AnimationChannel& channel, float t) {
   return keyValue(channel, k);
 }
 
+std::vector<float> sampleWeights(const AnimationChannel& channel, float t) {
+  const size_t n = channel.weightCount;
+  std::vector<float> out(n, 0.0f);
+  const std::vector<float>& times = channel.times;
+  const bool cubic = channel.interpolation == Interpolation::CubicSpline;
+  const size_t perKey = cubic ? 3 : 1;
+  if (times.empty() || channel.weights.size() < times.size() * perKey * n) return out;
+  auto value = [&](size_t key, size_t which) {  // which: 0 in-tangent, 1 value, 2 out-tangent
+    return &channel.weights[(key * perKey + (cubic ? which : 0)) * n];
+  };
+  auto copyKey = [&](size_t key) {
+    const float* v = value(key, 1);
+    out.assign(v, v + n);
+    return out;
+  };
+  if (!(t > times.front())) return copyKey(0);
+  if (t >= times.back()) return copyKey(times.size() - 1);
+  const size_t k = size_t(std::upper_bound(times.begin(), times.end(), t) - times.begin()) - 1;
+  const float dt = times[k + 1] - times[k];
+  const float u = std::clamp((t - times[k]) / dt, 0.0f, 1.0f);
+  switch (channel.interpolation) {
+    case Interpolation::Step:
+      return copyKey(k);
+    case Interpolation::Linear:
+      for (size_t i = 0; i < n; ++i) out[i] = glm::mix(value(k, 1)[i], value(k + 1, 1)[i], u);
+      return out;
+    case Interpolation::CubicSpline: {
+      const float u2 = u * u, u3 = u2 * u;
+      for (size_t i = 0; i < n; ++i)
+        out[i] = (2.0f * u3 - 3.0f * u2 + 1.0f) * value(k, 1)[i] +
+                 (u3 - 2.0f * u2 + u) * dt * value(k, 2)[i] +
+                 (-2.0f * u3 + 3.0f * u2) * value(k + 1, 1)[i] +
+                 (u3 - u2) * dt * value(k + 1, 0)[i];
+      return out;
+    }
+  }
+  return out;
+}
+
 void applyChannel(const AnimationChannel& channel, float t, LocalTransform& local) {
+  if (channel.path == AnimationPath::Weights) return;
   const glm::vec4 v = sampleChannel(channel, t);
   switch (channel.path) {
     case AnimationPath::Translation:
@@ -81,6 +121,8 @@ void applyChannel(const AnimationChannel& channel, float t, LocalTransform& loca
       break;
     case AnimationPath::Scale:
       local.scale = glm::vec3(v);
+      break;
+    case AnimationPath::Weights:
       break;
   }
 }

@@ -16,7 +16,12 @@ namespace qlight::scene {
 // renormalized; STEP holds each key until the next.
 glm::vec4 sampleChannel(const AnimationChannel& channel, float t);
 
-// Writes the channel's value at t into the transform component it targets.
+// A Weights channel's morph weights at time t (weightCount of them), interpolated as
+// sampleChannel interpolates (LINEAR lerps, STEP holds, CUBICSPLINE is the Hermite spline).
+std::vector<float> sampleWeights(const AnimationChannel& channel, float t);
+
+// Writes the channel's value at t into the transform component it targets (Weights channels
+// are left to sampleWeights).
 void applyChannel(const AnimationChannel& channel, float t, LocalTransform& local);
 
 // The time at which to sample `animation` for a clock reading t: t itself, or t wrapped into

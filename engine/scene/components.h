@@ -7,6 +7,7 @@
 #include <glm/glm.hpp>
 #include <limits>
 #include <string>
+#include <vector>
 
 #include "engine/ecs/entity.h"
 #include "engine/scene/scene_asset.h"
@@ -61,6 +62,33 @@ struct AnimatedNode {
   ChannelRef translation;
   ChannelRef rotation;
   ChannelRef scale;
+  ChannelRef weights;  // morph weights, into MorphWeights
+};
+
+// The morph target weights of the entity's mesh (the node's, else the mesh's defaults),
+// written by animation.
+struct MorphWeights {
+  std::vector<float> weights;
+};
+
+// A skinned node: SceneAsset::skins[skin], its joints' entities in the skin's order
+// (kNullEntity for a joint outside the shown scene: identity). Its MeshInstance is drawn in
+// world space (glTF ignores a skinned node's own transform).
+struct Skinned {
+  uint32_t skin = 0;
+  std::vector<ecs::Entity> joints;
+};
+
+// The entity's mesh as its skin and morph weights pose it (object space, or world space when
+// Skinned), written by deformSystem when the pose changes; `version` counts the changes so an
+// uploader sees which meshes are new. The inputs of the last deformation are kept to tell.
+struct DeformedMesh {
+  uint32_t mesh = 0;
+  std::vector<glm::vec3> positions;
+  std::vector<glm::vec3> normals;
+  uint64_t version = 0;  // 0: not deformed yet
+  std::vector<glm::mat4> jointMatrices;
+  std::vector<float> weights;
 };
 
 struct NodeName {

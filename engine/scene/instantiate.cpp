@@ -2,6 +2,7 @@
 
 #include "engine/scene/animation.h"
 #include "engine/scene/camera_framing.h"
+#include "engine/scene/deform.h"
 #include "engine/scene/transforms.h"
 
 namespace qlight::scene {
@@ -32,11 +33,28 @@ std::vector<AnimatedNode> channelsByNode(const SceneAsset& scene, std::vector<bo
         case AnimationPath::Scale:
           node.scale = ref;
           break;
+        case AnimationPath::Weights:
+          node.weights = ref;
+          break;
       }
       animated[channels[c].node] = true;
     }
   }
   return byNode;
+}
+
+// One child entity per EXT_mesh_gpu_instancing instance, each a MeshInstance of the node's
+// mesh (so each is one top-level BVH instance of the mesh's one bottom-level BVH).
+void instantiateInstances(const NodeAsset& node, uint32_t index, ecs::Entity parent,
+                          const glm::mat4& worldFromNode, ecs::Registry& registry) {
+  for (const LocalTransform& local : node.instances) {
+    const ecs::Entity e = registry.create();
+    registry.emplace<SceneNode>(e, SceneNode{index});
+    registry.emplace<LocalTransform>(e, local);
+    registry.emplace<WorldTransform>(e, WorldTransform{worldFromNode * toMatrix(local)});
+    registry.emplace<Parent>(e, Parent{parent});
+    registry.emplace<MeshInstance>(e, MeshInstance{uint32_t(node.mesh)});
+  }
 }
 
 }  // namespace
@@ -60,15 +78,30 @@ InstantiatedScene instantiate(const SceneAsset& scene, ecs::Registry& registry,
     registry.emplace<WorldTransform>(e, WorldTransform{world[i]});
     if (node.parent >= 0)
       registry.emplace<Parent>(e, Parent{out.nodeEntities[size_t(node.parent)]});
-    if (node.mesh >= 0) registry.emplace<MeshInstance>(e, MeshInstance{uint32_t(node.mesh)});
+    if (node.mesh >= 0 && node.instances.empty())
+      registry.emplace<MeshInstance>(e, MeshInstance{uint32_t(node.mesh)});
     if (node.light >= 0)
       registry.emplace<PunctualLight>(e, toComponent(scene.lights[size_t(node.light)]));
     if (animated[i]) registry.emplace<AnimatedNode>(e, channels[i]);
+    if (node.mesh >= 0) {
+      const MeshDeformation& deform = scene.meshes[size_t(node.mesh)].deform;
+      if (deform.morphed()) registry.emplace<MorphWeights>(e, MorphWeights{restWeights(scene, i)});
+      if (node.skin >= 0) registry.emplace<Skinned>(e, Skinned{uint32_t(node.skin), {}});
+      if (deform.morphed() || node.skin >= 0)
+        registry.emplace<DeformedMesh>(e, DeformedMesh{uint32_t(node.mesh), {}, {}, 0, {}, {}});
+      instantiateInstances(node, i, e, world[i], registry);
+    }
     if (node.camera >= 0) {
       registry.emplace<Camera>(e, toComponent(scene.cameras[size_t(node.camera)]));
       if (out.camera == ecs::kNullEntity) out.camera = e;
     }
   }
+
+  // Joints are entities once every node is.
+  registry.view<Skinned>().each([&](Skinned& skinned) {
+    for (uint32_t joint : scene.skins[skinned.skin].joints)
+      skinned.joints.push_back(out.nodeEntities[joint]);
+  });
 
   if (out.camera == ecs::kNullEntity) {
     const FramedCamera framed = frameBounds(scene.bounds, defaultCameraAspect);

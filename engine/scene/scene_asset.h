@@ -17,6 +17,32 @@
 
 namespace qlight::scene {
 
+// A morph target's per-vertex offsets over a whole mesh (zero where a primitive's target
+// leaves a vertex alone); normals empty when no primitive's target moves normals.
+struct MorphTarget {
+  std::vector<glm::vec3> positions;
+  std::vector<glm::vec3> normals;
+};
+
+// What moves a mesh's vertices at run time (engine/scene/deform.h); all empty for a rigid
+// mesh. Per-vertex arrays have the mesh's vertex count.
+struct MeshDeformation {
+  std::vector<MorphTarget> targets;   // glTF order
+  std::vector<float> defaultWeights;  // mesh.weights, one per target (0 where the file has none)
+  // The vertices before any target (MeshAsset::positions/normals hold them at the default
+  // weights, so code that ignores deformation sees the mesh as the file means it at rest).
+  std::vector<glm::vec3> basePositions;
+  std::vector<glm::vec3> baseNormals;
+  // JOINTS_0 / WEIGHTS_0: four influences per vertex, weights normalized to sum 1.
+  std::vector<glm::uvec4> joints;
+  std::vector<glm::vec4> weights;
+  // Triangles whose normals were generated flat: recomputed after each deformation.
+  std::vector<uint32_t> flatTriangles;
+
+  bool morphed() const { return !targets.empty(); }
+  bool skinnable() const { return !joints.empty(); }
+};
+
 // One glTF mesh: all its triangle primitives concatenated into one indexed triangle list.
 // positions/normals/uv0 always have the same length; uv0 is (0,0) where the file has no
 // TEXCOORD_0. Normals missing in the file are generated flat (the glTF spec asks for flat
@@ -35,6 +61,7 @@ struct MeshAsset {
   std::vector<uint32_t> triangleMaterials;  // 1 per triangle, index into SceneAsset::materials
   glm::vec3 boundsMin{0.0f};                // object space, over all positions
   glm::vec3 boundsMax{0.0f};
+  MeshDeformation deform;  // morph targets and skin weights, if any
 
   size_t triangleCount() const { return indices.size() / 3; }
 };
@@ -115,6 +142,20 @@ struct NodeAsset {
   int32_t mesh = -1;
   int32_t camera = -1;
   int32_t light = -1;  // KHR_lights_punctual
+  int32_t skin = -1;   // index into SceneAsset::skins, with a mesh that has JOINTS_0/WEIGHTS_0
+  std::vector<float> weights;  // the node's morph weights (empty: the mesh's defaults)
+  // EXT_mesh_gpu_instancing: the mesh is drawn once per transform (worldFromNode * instance),
+  // not at the node itself. Empty: drawn once, at the node.
+  std::vector<LocalTransform> instances;
+};
+
+// A glTF skin: joint nodes and their inverse bind matrices (identity where the file has none).
+// A skinned vertex is sum_i w_i * worldFromJoint_i * inverseBind_i * v, in world space: the
+// skinned node's own transform is ignored, as glTF says.
+struct SkinAsset {
+  std::string name;
+  std::vector<uint32_t> joints;                // node indices
+  std::vector<glm::mat4> inverseBindMatrices;  // one per joint
 };
 
 // A perspective camera looking down its node's -Z with +Y up (glTF).
@@ -143,18 +184,21 @@ struct LightAsset {
   float outerConeAngle = 0.7853981634f;
 };
 
-enum class AnimationPath : uint8_t { Translation, Rotation, Scale };
+enum class AnimationPath : uint8_t { Translation, Rotation, Scale, Weights };
 enum class Interpolation : uint8_t { Step, Linear, CubicSpline };
 
 // One channel with its sampler's data copied in. values hold (x, y, z, 0) for translation and
 // scale and (x, y, z, w) for rotation. For CubicSpline there are three values per key:
-// in-tangent, value, out-tangent (glTF order); otherwise one per key.
+// in-tangent, value, out-tangent (glTF order); otherwise one per key. A Weights channel keeps
+// its values in `weights` instead: weightCount floats per value, in the same order.
 struct AnimationChannel {
   uint32_t node = 0;
   AnimationPath path = AnimationPath::Translation;
   Interpolation interpolation = Interpolation::Linear;
   std::vector<float> times;  // seconds, strictly increasing, at least one key
   std::vector<glm::vec4> values;
+  std::vector<float> weights;
+  uint32_t weightCount = 0;  // morph targets of the node's mesh (Weights channels)
 };
 
 struct AnimationAsset {
@@ -185,6 +229,7 @@ struct SceneAsset {
   std::vector<uint32_t> rootNodes;  // roots of the scene shown (`scene`, else scenes[0])
   std::vector<CameraAsset> cameras;
   std::vector<LightAsset> lights;
+  std::vector<SkinAsset> skins;
   std::vector<AnimationAsset> animations;
   // Index of the material given to primitives without one (-1 if every primitive has one):
   // glTF's default, baseColor 1, metallic 1, roughness 1, kept as the spec says.

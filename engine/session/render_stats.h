@@ -32,6 +32,10 @@ struct RenderStats {
   bool guided = false;
   guiding::GuidingStats guidingStats;
   double pointGenerationSeconds = 0;
+  // The scene on the GPU: triangles, device memory, and the time to build its BLASes and
+  // the whole GPU scene (BVH and uploads).
+  uint64_t triangles = 0, sceneGpuBytes = 0;
+  double blasBuildSeconds = 0, sceneBuildSeconds = 0;
   // Per frame: share of paths that reached an emitter by a scattered ray, and
   // mean path length (how learning progresses).
   std::vector<double> emitterHitShareByFrame, pathLengthByFrame;

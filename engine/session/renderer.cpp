@@ -151,6 +151,10 @@ RenderStats Renderer::newStats() const {
   s.environmentLight = scene_.hasEnvironment();
   s.guided = guided();
   s.pointGenerationSeconds = pointGenerationSeconds_;
+  s.triangles = scene_.triangleCount();
+  s.sceneGpuBytes = scene_.memoryBytes();
+  s.blasBuildSeconds = scene_.blasBuildSeconds();
+  s.sceneBuildSeconds = scene_.buildSeconds();
   return s;
 }
 

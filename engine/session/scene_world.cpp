@@ -7,19 +7,24 @@ namespace qlight::session {
 SceneWorld::SceneWorld(const scene::SceneAsset& asset, float aspect) : asset_(asset) {
   instance_ = scene::instantiate(asset, registry_, aspect);
   // Registered out of order on purpose: the scheduler orders them by what
-  // they read and write (animation -> transforms -> extract).
+  // they read and write (animation -> transforms -> deform -> extract).
   scheduler_.add("extract")
       .phase(ecs::Phase::Extract)
-      .reads<scene::WorldTransform, scene::MeshInstance, scene::PunctualLight>()
+      .reads<scene::WorldTransform, scene::MeshInstance, scene::PunctualLight, scene::Skinned,
+             scene::DeformedMesh>()
       .writes<render::SceneDraw>()
       .run([this](ecs::Registry& r) { extract(r); });
   scheduler_.add("transforms")
       .reads<scene::LocalTransform, scene::Parent>()
       .writes<scene::WorldTransform>()
       .run([](ecs::Registry& r) { scene::transformSystem(r); });
+  scheduler_.add("deform")
+      .reads<scene::WorldTransform, scene::MorphWeights, scene::Skinned>()
+      .writes<scene::DeformedMesh>()
+      .run([this](ecs::Registry& r) { scene::deformSystem(r, asset_); });
   scheduler_.add("animation")
       .reads<scene::AnimatedNode>()
-      .writes<scene::LocalTransform>()
+      .writes<scene::LocalTransform, scene::MorphWeights>()
       .run([this](ecs::Registry& r) { scene::animationSystem(r, asset_, time_, /*loop=*/true); });
   scheduler_.compile();
   registry_.storage<scene::WorldTransform>().markAllDirty();
@@ -34,15 +39,21 @@ void SceneWorld::advance(float seconds) {
 
 void SceneWorld::extract(ecs::Registry& r) {
   auto& world = r.storage<scene::WorldTransform>();
-  auto dirty = world.dirtyRange();
-  moved_ = dirty.end > dirty.begin;
+  auto& deformed = r.storage<scene::DeformedMesh>();
+  auto dirty = world.dirtyRange(), reposed = deformed.dirtyRange();
+  moved_ = dirty.end > dirty.begin || reposed.end > reposed.begin;
   world.clearDirty();
+  deformed.clearDirty();
   if (!moved_ && !draw_.meshes.empty()) return;
   draw_ = {};
   r.view<const scene::WorldTransform, const scene::MeshInstance>().each(
-      [&](const scene::WorldTransform& w, const scene::MeshInstance& m) {
-        draw_.meshes.push_back({m.mesh, w.worldFromLocal});
+      [&](ecs::Entity e, const scene::WorldTransform& w, const scene::MeshInstance& m) {
+        const bool skinned = r.has<scene::Skinned>(e);  // already in world space
+        draw_.meshes.push_back({m.mesh, skinned ? glm::mat4(1.0f) : w.worldFromLocal});
       });
+  r.view<const scene::DeformedMesh>().each([&](const scene::DeformedMesh& d) {
+    if (d.version != 0) draw_.deformed.push_back({d.mesh, d.version, d.positions, d.normals});
+  });
   r.view<const scene::WorldTransform, const scene::PunctualLight>().each(
       [&](const scene::WorldTransform& w, const scene::PunctualLight& l) {
         scene::LightAsset light;

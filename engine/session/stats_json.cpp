@@ -25,6 +25,10 @@ nlohmann::json statsToJson(const RenderStats& s) {
   j["lights"] = s.lights;
   j["fallback_sky"] = s.fallbackSky;
   j["environment_light"] = s.environmentLight;
+  j["triangles"] = s.triangles;
+  j["scene_gpu_bytes"] = s.sceneGpuBytes;
+  j["blas_build_seconds"] = s.blasBuildSeconds;
+  j["scene_build_seconds"] = s.sceneBuildSeconds;
   nlohmann::json gpu = nlohmann::json::object();
   double total = 0;
   for (auto& [name, ms] : s.gpuMs) {

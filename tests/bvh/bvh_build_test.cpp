@@ -352,5 +352,28 @@ TEST(BvhBuild, EmptySceneMissesEverything) {
   EXPECT_FALSE(shared::traceAny({0, 0, 0}, {0, 0, 1}, 1e30f));
 }
 
+// addMeshes builds the trees on two threads; the arrays are the very ones addMesh makes one
+// mesh after another (a large mesh, built in parallel itself, among small ones).
+TEST(BvhBuild, ParallelMeshBuildsEqualSequentialOnes) {
+  std::vector<Mesh> meshes = {randomSoup(3000, 21), gridCube(75), icosphere(3),
+                              randomSoup(10, 22),   Mesh{},       randomSoup(5000, 23)};
+  SceneBvh sequential, parallel;
+  std::vector<MeshInput> inputs;
+  for (const Mesh& m : meshes) {
+    sequential.addMesh(m.positions, m.indices);
+    inputs.push_back({m.positions, m.indices});
+  }
+  parallel.addMeshes(inputs);
+  EXPECT_EQ(parallel.flat().nodes, sequential.flat().nodes);
+  EXPECT_EQ(parallel.flat().triangles, sequential.flat().triangles);
+  EXPECT_EQ(parallel.flat().triangleIndices, sequential.flat().triangleIndices);
+  ASSERT_EQ(parallel.blasCount(), meshes.size());
+  Mesh bad = randomSoup(10, 24);
+  bad.indices[4] = 1000;
+  inputs.push_back({bad.positions, bad.indices});
+  SceneBvh failing;
+  EXPECT_THROW(failing.addMeshes(inputs), std::runtime_error);
+}
+
 }  // namespace
 }  // namespace qlight::bvh::testing

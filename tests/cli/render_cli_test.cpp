@@ -162,6 +162,27 @@ TEST(RenderCli, TexturesLargerThanTheDeviceAreRefusedWithTheLimit) {
       << r.output;
 }
 
+// Geometry larger than the device allows (simulated: 40 texels per buffer; Box's 24 vertices
+// need 48, its 12 triangles 36 in the BVH) is refused before the BVH is built, in one line
+// naming the geometry and the limit.
+TEST(RenderCli, GeometryLargerThanTheDeviceIsRefusedWithTheLimit) {
+  RunResult r =
+      runCommand("QLIGHT_TEST_MAX_TEXEL_ELEMENTS=40 " + std::string(QLIGHT_BINARY) +
+                 " render --scene " + std::string(QLIGHT_SAMPLES_DIR) + "/Box.gltf --out " + kTmp +
+                 "/qlight_biggeo.png --spp 1 --width 4 --height 4");
+  EXPECT_EQ(r.exitCode, 1) << r.output;
+  EXPECT_NE(r.output.find("the scene's geometry (12 triangles, 24 vertices in 1 meshes"),
+            std::string::npos)
+      << r.output;
+  EXPECT_NE(
+      r.output.find("needs 48 texels in one buffer; the device allows 40 (maxTexelBufferElements)"),
+      std::string::npos)
+      << r.output;
+  size_t lines = 0;
+  for (char c : r.output) lines += c == '\n';
+  EXPECT_LE(lines, 2u) << r.output;  // the device line and the error
+}
+
 // No Vulkan driver at all (the loader finds no ICD): one line that says what to install,
 // and a non-zero exit, for render, demo and bench alike.
 TEST(RenderCli, NoVulkanDeviceIsAOneLineError) {

@@ -1,6 +1,7 @@
 // The Khronos sample files (test data by others) load, with the counts and values they hold.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <filesystem>
 #include <glm/gtc/quaternion.hpp>
@@ -191,20 +192,22 @@ TEST(GltfSamples, BoxAnimatedHasTwoChannelsOfDifferentLengths) {
   EXPECT_EQ(scene.nodes[1].parent, 0);
 }
 
-TEST(GltfSamples, SimpleMorphAppliesDefaultWeightsAndSkipsTheWeightsChannel) {
+TEST(GltfSamples, SimpleMorphKeepsItsTargetsAndWeightsChannel) {
   const SceneAsset scene = loadSample("SimpleMorph.gltf");
+  EXPECT_TRUE(scene.warnings.empty()) << scene.warnings.front();
   ASSERT_EQ(scene.animations.size(), 1u);
-  EXPECT_TRUE(scene.animations[0].channels.empty());  // the `weights` channel is skipped
-  bool warnedWeights = false, warnedMorph = false;
-  for (const std::string& w : scene.warnings) {
-    warnedWeights = warnedWeights || w.find("weights") != std::string::npos;
-    warnedMorph = warnedMorph || w.find("morph") != std::string::npos;
-  }
-  EXPECT_TRUE(warnedWeights);
-  EXPECT_TRUE(warnedMorph);
-  // The apex (0.5, 0.5, 0) moves by 0.5 * (-1, 1, 0) + 0.5 * (1, 1, 0) (targets from the file).
-  EXPECT_NEAR(scene.bounds.max.y, 1.5f, 1e-6f);
-  EXPECT_NEAR(scene.bounds.max.x, 1.0f, 1e-6f);
+  ASSERT_EQ(scene.animations[0].channels.size(), 1u);
+  EXPECT_EQ(scene.animations[0].channels[0].path, AnimationPath::Weights);
+  EXPECT_EQ(scene.animations[0].channels[0].weightCount, 2u);
+  ASSERT_EQ(scene.meshes[0].deform.targets.size(), 2u);
+  EXPECT_EQ(scene.meshes[0].deform.defaultWeights, (std::vector<float>{0.5f, 0.5f}));
+  // The mesh's own vertices are at its default weights: the apex (0.5, 0.5, 0) moved by
+  // 0.5 * (-1, 1, 0) + 0.5 * (1, 1, 0) (targets from the file).
+  float top = 0.0f;
+  for (const glm::vec3& p : scene.meshes[0].positions) top = std::max(top, p.y);
+  EXPECT_NEAR(top, 1.5f, 1e-6f);
+  // The bounds are the pose at t = 0, where the animation's weights are (0, 0).
+  EXPECT_NEAR(scene.bounds.max.y, 0.5f, 1e-6f);
 }
 
 }  // namespace
