@@ -7,8 +7,8 @@
 #include "engine/gltf/gltf_convert.h"
 #include "engine/gltf/gltf_file_check.h"
 #include "engine/scene/animation.h"
-#include "engine/scene/tangents.h"
 #include "engine/scene/deform.h"
+#include "engine/scene/tangents.h"
 #include "engine/scene/transforms.h"
 
 namespace qlight::gltf {

@@ -7,10 +7,10 @@
 #include <cstring>
 #include <stdexcept>
 
-#include "engine/render/scene_packing.h"
 #include "engine/render/environment_tables.h"
-#include "shaders/shared/environment.h"
+#include "engine/render/scene_packing.h"
 #include "shaders/shared/bvh_types.h"
+#include "shaders/shared/environment.h"
 #include "shaders/shared/sampling.h"
 
 namespace qlight::render {
