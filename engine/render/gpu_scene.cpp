@@ -148,6 +148,7 @@ void GpuScene::uploadStatic() {
   for (auto& m : asset_.materials) {
     materials.push_back(packMaterial(m));
     hasTextures_ |= usesTextures(m);
+    hasAlphaTest_ |= m.alphaMode != scene::AlphaMode::Opaque;
   }
   if (materials.empty()) materials.push_back(packMaterial(scene::MaterialAsset{}));
 

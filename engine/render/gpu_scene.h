@@ -51,6 +51,7 @@ class GpuScene {
   // Features the path tracing passes are specialized on.
   bool hasTextures() const { return hasTextures_; }
   bool hasVertexExtras() const { return hasVertexExtras_; }  // TEXCOORD_1, COLOR_0, tangents
+  bool hasAlphaTest() const { return hasAlphaTest_; }        // some material is MASK or BLEND
   bool hasNonTriangleLights() const {
     return hasNonTriangleLights_;
   }  // world space, of the last update
@@ -95,6 +96,7 @@ class GpuScene {
   double blasBuildSeconds_ = 0.0, buildSeconds_ = 0.0;
   bool hasTextures_ = false;
   bool hasVertexExtras_ = false;
+  bool hasAlphaTest_ = false;
   bool hasNonTriangleLights_ = false;
 
   std::unique_ptr<gpu::Buffer> vertices_, triangleBuffer_, materials_, textures_, texels_;

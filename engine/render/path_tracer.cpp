@@ -26,7 +26,6 @@ FrameCounters& FrameCounters::operator+=(const FrameCounters& o) {
 PathTracer::PathTracer(const gpu::Context& ctx, const RenderSettings& settings)
     : ctx_(ctx),
       begin_(ctx, "pt_begin"),
-      trace_(ctx, "pt_trace"),
       queue_(ctx, "pt_queue"),
       queueState_(ctx, 2 * sizeof(shared::QueueState), "path.queues",
                   VK_BUFFER_USAGE_INDIRECT_BUFFER_BIT),
@@ -102,6 +101,7 @@ const gpu::ComputePipeline& PathTracer::specialized(const char* shader, const Gp
   features[shared::kSpecUseNonTriangleLights] = scene.hasNonTriangleLights();
   features[shared::kSpecUseVertexExtras] = scene.hasVertexExtras();
   features[shared::kSpecUseEnvironmentMap] = scene.hasEnvironmentMap();
+  features[shared::kSpecUseAlphaTest] = scene.hasAlphaTest();
   uint32_t key = 0;  // one bit per feature
   for (uint32_t id = shared::kSpecUseTextures; id < features.size(); ++id)
     key |= features[id] << (id - shared::kSpecUseTextures);
@@ -194,6 +194,7 @@ void PathTracer::recordFrame(gpu::PassRecorder& rec, const GpuScene& scene,
         .dispatchIndirect(queueState_, (bounce & 1) * sizeof(shared::QueueState) +
                                            offsetof(shared::QueueState, groupsX));
   };
+  const gpu::ComputePipeline& trace = specialized("pt_trace", scene, guide.features());
   const gpu::ComputePipeline& shade = specialized("pt_shade", scene, guide.features());
   const gpu::ComputePipeline& end = specialized("pt_end", scene, guide.features());
   // Wavefront: begin, then per bounce trace (shadow + extension rays) and
@@ -205,14 +206,14 @@ void PathTracer::recordFrame(gpu::PassRecorder& rec, const GpuScene& scene,
     switchQueues(s, 0, true);
     for (uint32_t bounce = 0; bounce <= settings_.maxDepth; ++bounce) {
       if (bounce > 0) switchQueues(s, bounce, false);
-      queued(pass("path.trace", trace_, s, bounce, 1), bounce);
+      queued(pass("path.trace", trace, s, bounce, 1), bounce);
       queued(pass("path.shade", shade, s, bounce, 0)
                  .write(QL_BIND_QUEUE_OUT, *queueIds_[(bounce + 1) & 1]),
              bounce);
     }
     uint32_t last = settings_.maxDepth + 1;
     switchQueues(s, last, false);
-    queued(pass("path.trace", trace_, s, last, 0), last);  // the last shadow rays
+    queued(pass("path.trace", trace, s, last, 0), last);  // the last shadow rays
     pass("path.end", end, s, 0, 0)
         .write(QL_BIND_ACCUM, *accum_)
         .write(QL_BIND_STATS, stats_)

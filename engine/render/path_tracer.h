@@ -65,7 +65,7 @@ class PathTracer {
   const gpu::Context& ctx_;
   RenderSettings settings_;
   // The wavefront passes (shaders/pt_*.comp) and the path state between them.
-  gpu::ComputePipeline begin_, trace_, queue_;
+  gpu::ComputePipeline begin_, queue_;
   // pt_shade and pt_end specialized per feature set (textures, guiding, light learning,
   // non-triangle lights), keyed by shader and feature bits.
   const gpu::ComputePipeline& specialized(const char* shader, const GpuScene& scene,

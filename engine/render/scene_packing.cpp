@@ -34,6 +34,9 @@ shared::GpuMaterial packMaterial(const scene::MaterialAsset& m) {
   g.specular = m.specularFactor;
   uint32_t flags = m.doubleSided ? shared::kMaterialDoubleSided : 0u;
   if (m.unlit) flags |= shared::kMaterialUnlit;
+  if (m.alphaMode == scene::AlphaMode::Mask) flags |= shared::kMaterialAlphaMask;
+  if (m.alphaMode == scene::AlphaMode::Blend) flags |= shared::kMaterialAlphaBlend;
+  g.alphaCutoff = m.alphaCutoff;
   g.flags = float(flags);
   g.normalScale = m.normalScale;
   g.textures[shared::kTextureSlotBaseColor] = packView(m.baseColorTexture);

@@ -12,3 +12,5 @@ layout(constant_id = QL_SPEC_USE_NON_TRIANGLE_LIGHTS) const bool kUseNonTriangle
 layout(constant_id = QL_SPEC_USE_VERTEX_EXTRAS) const bool kUseVertexExtras = true;
 // The sky is an environment map (shared/environment.h), else uniform.
 layout(constant_id = QL_SPEC_USE_ENVIRONMENT_MAP) const bool kUseEnvironmentMap = true;
+// Materials with alphaMode MASK or BLEND: traversal tests their alpha at each candidate hit.
+layout(constant_id = QL_SPEC_USE_ALPHA_TEST) const bool kUseAlphaTest = true;

@@ -1,6 +1,8 @@
 // Scene buffers of the path tracer and the hit -> surface resolution.
 // Included by the path tracing and guiding passes after the shared headers.
 #include "include/features.glsl"
+#include "shared/random.h"
+#include "shared/bvh_types.h"
 
 layout(binding = QL_BIND_BVH_NODES) uniform samplerBuffer uBvhNodes;
 layout(binding = QL_BIND_BVH_TRIS) uniform samplerBuffer uBvhTris;
@@ -8,7 +10,6 @@ layout(binding = QL_BIND_BVH_INSTANCES) uniform samplerBuffer uBvhInstances;
 #define QL_BVH_NODE(i) texelFetch(uBvhNodes, int(i))
 #define QL_BVH_TRI(i) texelFetch(uBvhTris, int(i))
 #define QL_BVH_INST(i) texelFetch(uBvhInstances, int(i))
-#include "shared/bvh_traverse.h"
 
 layout(binding = QL_BIND_TRIANGLES) uniform usamplerBuffer uTriangles;  // 2 texels each
 layout(binding = QL_BIND_VERTICES) uniform samplerBuffer uVertices;     // 2 texels each
@@ -70,6 +71,9 @@ GpuMaterial materialAt(uint i) {
   m.specular = c.y;
   m.flags = c.z;
   m.normalScale = c.w;
+  vec4 d = texelFetch(uMaterials, at + 3);
+  m.alphaCutoff = d.x;
+  m.pad0 = m.pad1 = m.pad2 = 0.0;
   return m;
 }
 
@@ -227,3 +231,35 @@ vec3 surfaceEmission(Surface s) {
   if (m.emissive == vec3(0.0)) return vec3(0.0);
   return m.emissive * surfaceTexture(s, kTextureSlotEmissive).rgb;
 }
+
+// Alpha at a candidate hit: MASK passes where alpha < alphaCutoff, BLEND with probability
+// 1 - alpha, decided by a hash of the ray and the triangle (stochastic transparency: each
+// sample's ray sees a surface of alpha a with probability a, so the mean is the blend).
+bool alphaAcceptsHit(uint instance, uint primitive, float u, float v, vec3 origin, vec3 dir) {
+  if (!kUseAlphaTest) return true;
+  GpuTriangle tri = triangleAt(instances[instance].firstTriangle + primitive);
+  GpuMaterial m = materialAt(tri.material);
+  uint flags = uint(m.flags);
+  if ((flags & (kMaterialAlphaMask | kMaterialAlphaBlend)) == 0u) return true;
+  float w = 1.0 - u - v;
+  vec2 uv0 = w * vertexUv(tri.v0) + u * vertexUv(tri.v1) + v * vertexUv(tri.v2);
+  vec2 uv1 = vec2(0.0);
+  float alpha = m.baseColor.a;
+  if (kUseVertexExtras && tri.vertexExtras != kNoVertexExtras) {
+    GpuVertexExtras a = vertexExtrasAt(tri.vertexExtras, tri.v0);
+    GpuVertexExtras b = vertexExtrasAt(tri.vertexExtras, tri.v1);
+    GpuVertexExtras c = vertexExtrasAt(tri.vertexExtras, tri.v2);
+    uv1 = w * a.uv1 + u * b.uv1 + v * c.uv1;
+    alpha *= w * a.color.a + u * b.color.a + v * c.color.a;
+  }
+  alpha *= sampleMaterialTexture(tri.material, kTextureSlotBaseColor, uv0, uv1).a;
+  if ((flags & kMaterialAlphaMask) != 0u) return alpha >= m.alphaCutoff;
+  uint h = pcgHash(floatBitsToUint(origin.x) ^ pcgHash(floatBitsToUint(origin.y) ^
+           pcgHash(floatBitsToUint(origin.z) ^ pcgHash(floatBitsToUint(dir.x) ^
+           pcgHash(floatBitsToUint(dir.y) + 0x9e3779b9u * primitive + instance)))));
+  return uintToUnitFloat(h) < alpha;
+}
+
+#define QL_BVH_ACCEPT_HIT(instance, primitive, u, v) \
+  alphaAcceptsHit(instance, primitive, u, v, origin, dir)
+#include "shared/bvh_traverse.h"

@@ -131,6 +131,12 @@ QL_FN bool bvhIntersectTriangle(BvhLocalRay ray, vec3 p0, vec3 p1, vec3 p2, floa
   return true;
 }
 
+// A candidate hit counts when QL_BVH_ACCEPT_HIT(instance, primitive, u, v) holds: the GLSL
+// includer (include/scene_access.glsl) tests alpha there; by default every hit counts.
+#ifndef QL_BVH_ACCEPT_HIT
+#define QL_BVH_ACCEPT_HIT(instance, primitive, u, v) true
+#endif
+
 // Both entry points: anyHit stops at the first hit (the compiler folds the
 // constant after inlining).
 QL_FN bool bvhTrace(vec3 origin, vec3 dir, float tMax, bool anyHit, QL_OUT(BvhHit) hit) {
@@ -216,7 +222,8 @@ QL_FN bool bvhTrace(vec3 origin, vec3 dir, float tMax, bool anyHit, QL_OUT(BvhHi
         vec4 t1 = QL_BVH_TRI(texel + 1u);
         vec4 t2 = QL_BVH_TRI(texel + 2u);
         vec3 tuv = vec3(0.0f);
-        if (bvhIntersectTriangle(local, vec3(t0), vec3(t1), vec3(t2), hit.t, tuv)) {
+        if (bvhIntersectTriangle(local, vec3(t0), vec3(t1), vec3(t2), hit.t, tuv) &&
+            QL_BVH_ACCEPT_HIT(instance, floatBitsToUint(t0.w), tuv.y, tuv.z)) {
           found = true;
           hit.t = tuv.x;
           hit.u = tuv.y;

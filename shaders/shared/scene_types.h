@@ -62,6 +62,10 @@ QL_CHECK_SIZE(GpuInstance, 112);
 
 QL_CONST uint kMaterialDoubleSided = 1u;
 QL_CONST uint kMaterialUnlit = 2u;  // KHR_materials_unlit: emits its base colour, scatters nothing
+// alphaMode MASK (opaque where alpha >= alphaCutoff, else absent) and BLEND (stochastic
+// transparency: present with probability alpha), for every ray, shadow rays included.
+QL_CONST uint kMaterialAlphaMask = 4u;
+QL_CONST uint kMaterialAlphaBlend = 8u;
 
 // How a material reads one texture (KHR_texture_transform as a 2x3 matrix):
 // uv' = (a u + b v + offsetU, c u + d v + offsetV) on UV set texCoord.
@@ -76,7 +80,7 @@ QL_CONST uint kTextureSlotEmissive = 2u;
 QL_CONST uint kTextureSlotNormal = 3u;
 QL_CONST uint kTextureSlots = 4u;
 
-// Eleven RGBA32F texels: three of factors, then a GpuTextureView per slot.
+// Twelve RGBA32F texels: four of factors, then a GpuTextureView per slot.
 struct GpuMaterial {
   vec4 baseColor;  // linear RGBA
   vec3 emissive;   // linear radiance (factor x strength)
@@ -85,11 +89,13 @@ struct GpuMaterial {
   float specular;  // KHR_materials_specular specularFactor (1 = plain glTF)
   float flags;     // kMaterial* bits, as a float value
   float normalScale;
+  float alphaCutoff;
+  float pad0, pad1, pad2;
   GpuTextureView textures[kTextureSlots];
 };
-QL_CHECK_SIZE(GpuMaterial, 176);
-QL_CONST uint kMaterialTexels = 11u;
-QL_CONST uint kMaterialFactorTexels = 3u;
+QL_CHECK_SIZE(GpuMaterial, 192);
+QL_CONST uint kMaterialTexels = 12u;
+QL_CONST uint kMaterialFactorTexels = 4u;
 
 // Textures live in one uint texel buffer (RGBA8 packed), each at an offset.
 QL_CONST uint kTextureSrgb = 1u;

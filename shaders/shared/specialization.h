@@ -14,6 +14,7 @@
 #define QL_SPEC_USE_NON_TRIANGLE_LIGHTS 6
 #define QL_SPEC_USE_VERTEX_EXTRAS 7
 #define QL_SPEC_USE_ENVIRONMENT_MAP 8
+#define QL_SPEC_USE_ALPHA_TEST 9
 
 QL_BEGIN
 QL_CONST uint kSpecUseTextures = QL_SPEC_USE_TEXTURES;
@@ -22,7 +23,8 @@ QL_CONST uint kSpecUseLightLearning = QL_SPEC_USE_LIGHT_LEARNING;
 QL_CONST uint kSpecUseNonTriangleLights = QL_SPEC_USE_NON_TRIANGLE_LIGHTS;
 QL_CONST uint kSpecUseVertexExtras = QL_SPEC_USE_VERTEX_EXTRAS;
 QL_CONST uint kSpecUseEnvironmentMap = QL_SPEC_USE_ENVIRONMENT_MAP;
-QL_CONST uint kSpecPathFeatureCount = QL_SPEC_USE_ENVIRONMENT_MAP + 1u;  // values to pass
+QL_CONST uint kSpecUseAlphaTest = QL_SPEC_USE_ALPHA_TEST;
+QL_CONST uint kSpecPathFeatureCount = QL_SPEC_USE_ALPHA_TEST + 1u;  // values to pass
 QL_END
 
 #endif

@@ -245,5 +245,93 @@ INSTANTIATE_TEST_SUITE_P(
         // normalTexture.scale doubles the tilt.
         NormalMapCase{{0.0f, 0.5f, 0.8660254f}, {0.0f, 0.7071f, 0.7071f}, 2.0f}));
 
+// A red plane at y = 1 over a green floor, both Lambertian, under a directional light of
+// irradiance 3 straight down, seen from above (image x = world x, over x in [-0.8, 0.8]).
+// Direct light only (maxDepth 1): a surface lit at normal incidence shows 3 / pi.
+scene::SceneAsset planeOverFloor(scene::MaterialAsset plane) {
+  scene::SceneAsset s;
+  scene::MaterialAsset floor;
+  floor.baseColorFactor = glm::vec4(0, 1, 0, 1);
+  floor.metallicFactor = 0.0f;
+  floor.specularFactor = 0.0f;
+  plane.metallicFactor = 0.0f;
+  plane.specularFactor = 0.0f;
+  plane.doubleSided = true;
+  s.materials = {floor, plane};
+  scene::MeshAsset mesh;
+  const float r = 20.0f;
+  scene::addQuad(mesh, {-r, 0, r}, {r, 0, r}, {r, 0, -r}, {-r, 0, -r}, 0);
+  scene::addQuad(mesh, {-1, 1, 1}, {1, 1, 1}, {1, 1, -1}, {-1, 1, -1}, 1);  // u along +x
+  scene::addMeshAtOrigin(s, mesh);
+  scene::LightAsset sun;
+  sun.type = scene::LightType::Directional;
+  sun.intensity = 3.0f;
+  scene::NodeAsset sunNode;
+  sunNode.light = 0;
+  s.lights.push_back(sun);
+  sunNode.local.rotation = glm::rotation(glm::vec3(0, 0, -1), glm::vec3(0, -1, 0));
+  scene::addNode(s, sunNode);
+  scene::addCameraNode(s, 2.0f * std::atan(0.2f), {0, 5, 0},
+                       glm::quatLookAt(glm::vec3(0, -1, 0), {0, 0, -1}));
+  scene::refreshBounds(s);
+  return s;
+}
+
+constexpr double kLitAtNormalIncidence = 3.0 / 3.14159265358979;
+
+session::OfflineRender renderDirect(const gpu::Context& ctx, const scene::SceneAsset& s,
+                                    uint32_t spp) {
+  render::RenderSettings settings = smallSettings(kSize, kSize, 13);
+  settings.maxDepth = 1;
+  return session::renderScene(ctx, s, settings, spp, 0.0f);
+}
+
+// alphaMode MASK: where the texture's alpha (0.2 on the left half, 0.9 on the right) is below
+// the cutoff 0.5 the plane is absent for camera and shadow rays alike, so the left half shows
+// the lit floor and the right half the lit plane, both exactly.
+TEST_F(MaterialFeatures, AlphaMaskLetsRaysAndLightThroughBelowTheCutoff) {
+  scene::MaterialAsset plane;
+  plane.baseColorFactor = glm::vec4(1, 0, 0, 1);
+  plane.alphaMode = scene::AlphaMode::Mask;
+  plane.alphaCutoff = 0.5f;
+  plane.baseColorTexture.index = 0;
+  scene::SceneAsset s = planeOverFloor(plane);
+  scene::TextureAsset alpha;
+  alpha.width = 2;
+  alpha.height = 1;
+  alpha.rgba8 = {255, 255, 255, 51, 255, 255, 255, 230};
+  alpha.nearestFilter = true;
+  s.textures.push_back(alpha);
+  auto r = renderDirect(ctx(), s, 4);
+  for (uint32_t y = 1; y + 1 < kSize; ++y)
+    for (uint32_t x = 1; x + 1 < kSize; ++x) {
+      if (x == kSize / 2 - 1 || x == kSize / 2) continue;  // the seam
+      const bool left = x < kSize / 2;
+      const glm::vec3 got = pixel(r.image, x, y);
+      EXPECT_NEAR(got.r, left ? 0.0 : kLitAtNormalIncidence, 1e-4) << x << "," << y;
+      EXPECT_NEAR(got.g, left ? kLitAtNormalIncidence : 0.0, 1e-4) << x << "," << y;
+    }
+}
+
+// alphaMode BLEND as stochastic transparency: a plane of alpha 0.25 is hit by a quarter of
+// the camera rays and blocks a quarter of the light, so the image is 0.25 x the lit plane
+// (red) over 0.75 x the floor under 0.75 of the light (green), within the noise.
+TEST_F(MaterialFeatures, AlphaBlendIsStochasticTransparencyForEveryRay) {
+  scene::MaterialAsset plane;
+  plane.baseColorFactor = glm::vec4(1, 0, 0, 0.25f);
+  plane.alphaMode = scene::AlphaMode::Blend;
+  auto r = renderDirect(ctx(), planeOverFloor(plane), 64);
+  for (int c : {0, 1}) {
+    std::vector<double> values;
+    for (uint32_t y = 0; y < kSize; ++y)
+      for (uint32_t x = 0; x < kSize; ++x) values.push_back(pixel(r.image, x, y)[c]);
+    const Moments m = moments(values);
+    const double want = c == 0 ? 0.25 * kLitAtNormalIncidence : 0.75 * 0.75 * kLitAtNormalIncidence;
+    EXPECT_NEAR(m.mean, want, 5.0 * m.standardError() + 1e-4) << "channel " << c;
+    // Sharp enough to tell a plane ignored by shadow rays (0.75 instead of 0.5625).
+    EXPECT_LT(5.0 * m.standardError(), 0.1 * want) << "channel " << c;
+  }
+}
+
 }  // namespace
 }  // namespace qlight::test
