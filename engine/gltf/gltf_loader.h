@@ -12,7 +12,8 @@ namespace qlight::gltf {
 using namespace ::qlight::scene;  // glTF I/O reads and writes the scene's plain data
 
 // Extensions read: KHR_lights_punctual, KHR_materials_emissive_strength,
-// KHR_materials_specular (specularFactor only); these may be in extensionsRequired.
+// KHR_materials_specular (specularFactor only), KHR_texture_transform, KHR_materials_unlit,
+// EXT_mesh_gpu_instancing; these may be in extensionsRequired.
 //
 // Loads the file into a SceneAsset. Throws std::runtime_error with one line,
 // "<path>: <problem>", for a missing or unreadable file, malformed JSON, missing or truncated
