@@ -161,8 +161,8 @@ uint lookupCachePoint(inout PathState st, uint path, Vertex v, vec3 le, Switches
   return point;
 }
 
-// A point guides at a share that shrinks with the BSDF's specular part (which
-// the strata cannot resolve) and with too few updates for its Q to be trusted.
+// A point guides at a share that shrinks with the BSDF's specular and
+// transmitted parts (which the strata cannot resolve) and with too few updates for its Q to be trusted.
 ScatterMix scatterMix(uint point, Vertex v, Switches sw) {
   ScatterMix m;
   m.point = point;
@@ -174,7 +174,7 @@ ScatterMix scatterMix(uint point, Vertex v, Switches sw) {
     m.row.total = 1.0;
   }
   m.guideShare = kUseGuiding && sw.guide && point != kNoCachePoint
-                     ? guiding.selectProbability * (1.0 - bsdfSpecularProbability(v.bsdf, v.wo)) *
+                     ? guiding.selectProbability * bsdfDiffuseProbability(v.bsdf, v.wo) *
                            pointConfidence(point)
                      : 0.0;
   return m;
@@ -195,21 +195,37 @@ float mixturePdf(ScatterMix m, Vertex v, vec3 wiLocal, vec3 wiWorld) {
   return mixturePdfInStratum(m, v, wiLocal, k, pointLocal);
 }
 
+// A direction the vertex can scatter into: above both the shading and the
+// geometric surface, or below both where the material transmits.
+bool scatterable(Vertex v, vec3 wiLocal, vec3 wiWorld) {
+  float side = dot(wiWorld, v.s.geometricNormal);
+  return (wiLocal.z > 0.0 && side > 0.0) ||
+         (v.bsdf.transmission > 0.0 && wiLocal.z < 0.0 && side < 0.0);
+}
+
+// Ray origins just off the surface on each side (above: the side of the incoming ray).
+struct RayOrigins {
+  vec3 above, below;
+};
+
+vec3 originToward(RayOrigins o, Vertex v, vec3 dir) {
+  return dot(dir, v.s.geometricNormal) > 0.0 ? o.above : o.below;
+}
+
 // NEE: one light sample, MIS-weighted against the scatter mixture. The next
 // trace pass traces its shadow ray; with light learning, the light's value
 // target is recorded there if unoccluded, or here (0) when there is no ray.
-void sampleDirectLight(inout PathState st, inout Rng rng, Vertex v, ScatterMix m, vec3 p,
+void sampleDirectLight(inout PathState st, inout Rng rng, Vertex v, ScatterMix m, RayOrigins o,
                        bool mis) {
   float selectPdf;
   uint li = chooseLight(m.point, rngNextFloat(rng), selectPdf);
   LightSample ls = sampleLight(v.s.position, rngNext2(rng), li, selectPdf);
   vec3 wi = localFromWorld(v.tf, ls.direction);
-  bool valid = ls.pdf > 0.0 && wi.z > 0.0 && dot(ls.direction, v.s.geometricNormal) > 0.0 &&
-               ls.radiance != vec3(0.0);
+  bool valid = ls.pdf > 0.0 && scatterable(v, wi, ls.direction) && ls.radiance != vec3(0.0);
   vec3 contribution = vec3(0.0);
   float target = 0.0;  // f cos L / pdf(point on light | light), if unoccluded
   if (valid) {
-    vec3 f = bsdfEval(v.bsdf, v.wo, wi) * wi.z;
+    vec3 f = bsdfEval(v.bsdf, v.wo, wi) * abs(wi.z);
     target = luminance(f * ls.radiance * (selectPdf / ls.pdf));
     float scatterPdf = mixturePdf(m, v, wi, ls.direction);
     float w = ls.delta || !mis ? 1.0 : powerHeuristic(1.0, ls.pdf, 1.0, scatterPdf);
@@ -218,7 +234,7 @@ void sampleDirectLight(inout PathState st, inout Rng rng, Vertex v, ScatterMix m
   bool learnLight = lightLearningOn(m.point);
   if (contribution != vec3(0.0)) {
     st.flags |= kPathShadowPending;
-    st.shadowOrigin = p;
+    st.shadowOrigin = originToward(o, v, ls.direction);
     st.shadowDir = ls.direction;
     st.shadowTMax = ls.distance >= kInfinity ? kInfinity : ls.distance * (1.0 - 1e-4);
     st.shadowContribution = contribution;
@@ -232,7 +248,8 @@ void sampleDirectLight(inout PathState st, inout Rng rng, Vertex v, ScatterMix m
 
 // The next direction from the mixture, and the path moved onto it. Returns
 // false when no usable direction came out (the path ends).
-bool sampleScatter(inout PathState st, inout Rng rng, Vertex v, ScatterMix m, vec3 p, bool learn) {
+bool sampleScatter(inout PathState st, inout Rng rng, Vertex v, ScatterMix m, RayOrigins o,
+                   bool learn) {
   vec3 wiWorld = vec3(0.0);
   vec3 pointLocal = vec3(0.0);  // wi in the point's frame
   uint k;                       // and its stratum: each found once, for the pdf and the Q entry
@@ -251,18 +268,18 @@ bool sampleScatter(inout PathState st, inout Rng rng, Vertex v, ScatterMix m, ve
   }
   vec3 wiLocal = localFromWorld(v.tf, wiWorld);
   float pdf = 0.0;
-  // Directions under either the shading or the geometric surface are lost.
-  if (sampled && wiLocal.z > 0.0 && dot(wiWorld, v.s.geometricNormal) > 0.0)
+  // Directions between the shading and the geometric surface are lost.
+  if (sampled && scatterable(v, wiLocal, wiWorld))
     pdf = mixturePdfInStratum(m, v, wiLocal, k, pointLocal);
   bool moved = pdf > 0.0;
   if (moved) {
-    st.throughput *= bsdfEval(v.bsdf, v.wo, wiLocal) * (wiLocal.z / pdf);
+    st.throughput *= bsdfEval(v.bsdf, v.wo, wiLocal) * (abs(wiLocal.z) / pdf);
     st.prevScatterPdf = pdf;
     st.prevPoint = m.point;
     // The Q entry this direction updates once the next vertex is known.
     st.prevEntry = learn && m.point != kNoCachePoint && pointLocal.z > 0.0 ? m.row.base + k
                                                                            : kNoCachePoint;
-    st.origin = p;
+    st.origin = originToward(o, v, wiWorld);
     st.dir = wiWorld;
   }
   return moved;
@@ -295,9 +312,11 @@ bool scatterAt(inout PathState st, inout Rng rng, uint path, Surface s, vec3 le,
   // D&K's path length: vertices up to the first emitter reached.
   if ((st.flags & kPathEmitterHit) == 0u) st.vertices++;
   ScatterMix m = scatterMix(point, v, sw);
-  vec3 p = offsetRayOriginFrom(s.position, s.geometricNormal, s.extent);
-  if (sw.nee) sampleDirectLight(st, rng, v, m, p, sw.mis);
-  bool alive = sampleScatter(st, rng, v, m, p, sw.learn);
+  RayOrigins o;
+  o.above = offsetRayOriginFrom(s.position, s.geometricNormal, s.extent);
+  o.below = offsetRayOriginFrom(s.position, -s.geometricNormal, s.extent);
+  if (sw.nee) sampleDirectLight(st, rng, v, m, o, sw.mis);
+  bool alive = sampleScatter(st, rng, v, m, o, sw.learn);
   if (alive) alive = survivesRoulette(st, rng);
   return alive;
 }

@@ -102,6 +102,29 @@ float specularFactorOf(const tinygltf::Material& material, const std::string& ow
   return unitFactor(factor.GetNumberAsDouble(), owner + " specularFactor", ctx);
 }
 
+// KHR_materials_transmission (the factor; its texture is ignored with a warning).
+float transmissionOf(const tinygltf::Material& material, const std::string& owner,
+                     LoadContext& ctx) {
+  auto it = material.extensions.find("KHR_materials_transmission");
+  if (it == material.extensions.end() || !it->second.IsObject()) return 0.0f;
+  if (it->second.Has("transmissionTexture"))
+    ctx.warn(owner + " KHR_materials_transmission transmissionTexture is ignored");
+  const double t = numberOr(it->second, "transmissionFactor", 0.0, owner, ctx);
+  return unitFactor(t, owner + " transmissionFactor", ctx);
+}
+
+// KHR_materials_ior: at least 1 (the extension's 0, "no refraction", is not modelled).
+float iorOf(const tinygltf::Material& material, const std::string& owner, LoadContext& ctx) {
+  auto it = material.extensions.find("KHR_materials_ior");
+  if (it == material.extensions.end() || !it->second.IsObject()) return 1.5f;
+  const double ior = numberOr(it->second, "ior", 1.5, owner, ctx);
+  if (ior < 1.0) {
+    ctx.warn(owner + " ior " + std::to_string(ior) + " is below 1; 1.5 used");
+    return 1.5f;
+  }
+  return float(ior);
+}
+
 AlphaMode alphaModeOf(const std::string& mode, const std::string& owner, LoadContext& ctx) {
   if (mode == "MASK") return AlphaMode::Mask;
   if (mode == "BLEND") return AlphaMode::Blend;
@@ -200,6 +223,8 @@ void convertMaterials(const tinygltf::Model& model, SceneAsset& scene, LoadConte
     ctx.requireFinite(m.normalTexture.scale, owner + " normalTexture scale");
     out.normalScale = float(m.normalTexture.scale);
     out.unlit = m.extensions.count("KHR_materials_unlit") > 0;
+    out.transmissionFactor = transmissionOf(m, owner, ctx);
+    out.ior = iorOf(m, owner, ctx);
     scene.materials.push_back(out);
   }
 }

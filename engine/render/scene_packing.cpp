@@ -37,6 +37,8 @@ shared::GpuMaterial packMaterial(const scene::MaterialAsset& m) {
   if (m.alphaMode == scene::AlphaMode::Mask) flags |= shared::kMaterialAlphaMask;
   if (m.alphaMode == scene::AlphaMode::Blend) flags |= shared::kMaterialAlphaBlend;
   g.alphaCutoff = m.alphaCutoff;
+  g.transmission = m.transmissionFactor;
+  g.ior = m.ior;
   g.flags = float(flags);
   g.normalScale = m.normalScale;
   g.textures[shared::kTextureSlotBaseColor] = packView(m.baseColorTexture);

@@ -96,6 +96,10 @@ struct MaterialAsset {
   float normalScale = 1.0f;        // scales the map's x and y
   // KHR_materials_unlit: the surface shows its base colour as emission and scatters nothing.
   bool unlit = false;
+  // KHR_materials_transmission: the share of the diffuse base replaced by thin-walled
+  // transmission; KHR_materials_ior: the dielectric's index of refraction (its F0).
+  float transmissionFactor = 0.0f;
+  float ior = 1.5f;
   // KHR_materials_specular specularFactor: weight of the dielectric specular layer. 0 with
   // metallic 0 makes an exactly Lambertian surface (the generated scenes use it).
   float specularFactor = 1.0f;

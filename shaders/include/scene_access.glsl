@@ -73,7 +73,9 @@ GpuMaterial materialAt(uint i) {
   m.normalScale = c.w;
   vec4 d = texelFetch(uMaterials, at + 3);
   m.alphaCutoff = d.x;
-  m.pad0 = m.pad1 = m.pad2 = 0.0;
+  m.transmission = d.y;
+  m.ior = d.z;
+  m.pad0 = 0.0;
   return m;
 }
 
@@ -219,6 +221,8 @@ BsdfParams surfaceBsdf(Surface s) {
   p.metallic = clamp(m.metallic * mr.b, 0.0, 1.0);
   p.roughness = clamp(m.roughness * mr.g, 0.0, 1.0);
   p.specular = clamp(m.specular, 0.0, 1.0);
+  p.transmission = clamp(m.transmission, 0.0, 1.0);
+  p.ior = m.ior;
   return p;
 }
 

@@ -1,6 +1,7 @@
 // glTF metallic-roughness BSDF in the local shading frame (z = shading
 // normal), shared by GLSL and C++. The caller flips the normal to the side of
-// wo, so wo.z > 0; any wi with wi.z <= 0 has f = 0 and pdf = 0.
+// wo, so wo.z > 0; a wi with wi.z < 0 has f and pdf of the thin-walled
+// transmission only (0 without KHR_materials_transmission).
 //
 // The glTF 2.0 specification's reference model (appendix B), with
 // KHR_materials_specular's weight s on the dielectric layer:
@@ -38,12 +39,23 @@ QL_CONST float kDielectricF0 = 0.04f;
 // dielectric specular layer (1 = plain glTF). At 0 with metallic 0 the
 // material is exactly Lambertian (baseColor / pi): the furnace test and the
 // exact Q-learning transport of Lambertian vertices rely on that.
+// transmission: KHR_materials_transmission's factor, the share of the diffuse
+// base replaced by a thin-walled microfacet BTDF (no volume: the light leaves
+// the far side undeflected, blurred by the roughness); ior: KHR_materials_ior,
+// the dielectric F0 = ((ior - 1) / (ior + 1))^2 (1.5: 0.04).
 struct BsdfParams {
   vec3 baseColor;
   float metallic;
   float roughness;
   float specular;
+  float transmission;
+  float ior;
 };
+
+QL_FN float dielectricF0(BsdfParams p) {
+  float r = (p.ior - 1.0f) / (p.ior + 1.0f);
+  return r * r;
+}
 
 QL_FN float ggxAlpha(float roughness) { return max(roughness * roughness, kMinGgxAlpha); }
 
@@ -64,14 +76,14 @@ QL_FN float fresnelSchlickScalar(float f0, float cosTheta) {
 // Fresnel of the whole specular layer: the dielectric part weighted by
 // `specular`, the metal part by metallic.
 QL_FN vec3 specularFresnel(BsdfParams p, float cosTheta) {
-  vec3 dielectric = vec3(p.specular * fresnelSchlickScalar(kDielectricF0, cosTheta));
+  vec3 dielectric = vec3(p.specular * fresnelSchlickScalar(dielectricF0(p), cosTheta));
   return mix(dielectric, fresnelSchlick(p.baseColor, cosTheta), p.metallic);
 }
 
 // What the dielectric specular layer leaves to the diffuse base, at the
 // half vector's cosine wo.h.
 QL_FN float diffuseTransmission(BsdfParams p, float cosOm) {
-  return 1.0f - p.specular * fresnelSchlickScalar(kDielectricF0, cosOm);
+  return 1.0f - p.specular * fresnelSchlickScalar(dielectricF0(p), cosOm);
 }
 
 // The mean of (1 - wo.h)^5 over cosine-distributed wi, as a function of
@@ -150,8 +162,8 @@ QL_FN float halfVectorCosine(vec3 wo, vec3 wi) {
 
 QL_FN vec3 bsdfEvalDiffuse(BsdfParams p, vec3 wo, vec3 wi) {
   if (wo.z <= 0.0f || wi.z <= 0.0f) return vec3(0.0f);
-  return lambertBrdf(p.baseColor) *
-         ((1.0f - p.metallic) * diffuseTransmission(p, halfVectorCosine(wo, wi)));
+  return lambertBrdf(p.baseColor) * ((1.0f - p.metallic) * (1.0f - p.transmission) *
+                                     diffuseTransmission(p, halfVectorCosine(wo, wi)));
 }
 
 QL_FN vec3 bsdfEvalSpecular(BsdfParams p, vec3 wo, vec3 wi) {
@@ -164,67 +176,113 @@ QL_FN vec3 bsdfEvalSpecular(BsdfParams p, vec3 wo, vec3 wi) {
   return specularFresnel(p, cosOm) * (ggxD(m, alpha) * ggxVisibility(wo, wi, alpha));
 }
 
-// f(wo, wi) without the cosine.
+// The thin wall's far side: wi below the surface seen as its mirror image above.
+QL_FN vec3 mirrorThroughSurface(vec3 w) { return vec3(w.x, w.y, -w.z); }
+
+// Thin-walled transmission (wi.z < 0): what the dielectric layer lets through,
+// tinted by the base colour, spread by the GGX lobe about the straight-through
+// direction: (1 - metallic) t (1 - s Fd(wo.h')) baseColor D(h') V(wo, wi')
+// with wi' the mirror image of wi.
+QL_FN vec3 bsdfEvalTransmission(BsdfParams p, vec3 wo, vec3 wi) {
+  if (wo.z <= 0.0f || wi.z >= 0.0f || p.transmission <= 0.0f) return vec3(0.0f);
+  vec3 w = mirrorThroughSurface(wi);
+  float alpha = ggxAlpha(p.roughness);
+  vec3 m = normalize(wo + w);
+  float through =
+      (1.0f - p.metallic) * p.transmission * diffuseTransmission(p, halfVectorCosine(wo, w));
+  return p.baseColor * (through * ggxD(m, alpha) * ggxVisibility(wo, w, alpha));
+}
+
+// f(wo, wi) without the cosine; below the surface only the transmission.
 QL_FN vec3 bsdfEval(BsdfParams p, vec3 wo, vec3 wi) {
+  if (wi.z < 0.0f) return bsdfEvalTransmission(p, wo, wi);
   return bsdfEvalDiffuse(p, wo, wi) + bsdfEvalSpecular(p, wo, wi);
 }
 
-// Directional albedo of the diffuse lobe: baseColor (1 - metallic) times the
-// cosine-weighted mean of 1 - s Fd(wo.h), from the fitted mean of the
-// Schlick weight (within 1e-4 of the exact integral).
+// Directional albedo of the diffuse lobe: baseColor (1 - metallic) (1 - t)
+// times the cosine-weighted mean of 1 - s Fd(wo.h), from the fitted mean of
+// the Schlick weight (within 1e-4 of the exact integral).
 QL_FN vec3 bsdfDiffuseAlbedo(BsdfParams p, float cosThetaO) {
   float meanFresnel =
-      kDielectricF0 + (1.0f - kDielectricF0) * meanSchlickWeightOverCosine(cosThetaO);
-  return p.baseColor * ((1.0f - p.metallic) * (1.0f - p.specular * meanFresnel));
+      dielectricF0(p) + (1.0f - dielectricF0(p)) * meanSchlickWeightOverCosine(cosThetaO);
+  return p.baseColor *
+         ((1.0f - p.metallic) * (1.0f - p.transmission) * (1.0f - p.specular * meanFresnel));
 }
 
-// Probability of sampling the specular lobe: the lobes' approximate albedos
-// (specular: Fresnel at wo, ignoring shadowing; diffuse: the fit).
+// The lobes' sampling probabilities from their approximate albedos: specular
+// (Fresnel at wo, ignoring shadowing), diffuse (the fit), transmission (what
+// the dielectric layer passes at wo, ignoring shadowing).
+struct BsdfLobes {
+  float specular, diffuse, transmission;
+};
+
+QL_FN BsdfLobes bsdfLobeProbabilities(BsdfParams p, vec3 wo) {
+  BsdfLobes l;
+  l.specular = luminance(specularFresnel(p, wo.z));
+  l.diffuse = luminance(bsdfDiffuseAlbedo(p, wo.z));
+  l.transmission =
+      luminance(p.baseColor) * (1.0f - p.metallic) * p.transmission * diffuseTransmission(p, wo.z);
+  float total = l.specular + l.diffuse + l.transmission;
+  float scale = total > 0.0f ? 1.0f / total : 0.0f;
+  l.specular *= scale;
+  l.diffuse *= scale;
+  l.transmission *= scale;
+  return l;
+}
+
 QL_FN float bsdfSpecularProbability(BsdfParams p, vec3 wo) {
-  float spec = luminance(specularFresnel(p, wo.z));
-  float diff = luminance(bsdfDiffuseAlbedo(p, wo.z));
-  float total = spec + diff;
-  return total > 0.0f ? spec / total : 0.0f;
+  return bsdfLobeProbabilities(p, wo).specular;
 }
 
-// Solid-angle pdf of bsdfSample producing wi (0 below the horizon).
+// The share of samples on the diffuse lobe (the part a learned distribution may replace).
+QL_FN float bsdfDiffuseProbability(BsdfParams p, vec3 wo) {
+  return bsdfLobeProbabilities(p, wo).diffuse;
+}
+
+// Solid-angle pdf of bsdfSample producing wi.
 QL_FN float bsdfPdf(BsdfParams p, vec3 wo, vec3 wi) {
-  if (wo.z <= 0.0f || wi.z <= 0.0f) return 0.0f;
-  float pSpec = bsdfSpecularProbability(p, wo);
+  if (wo.z <= 0.0f || wi.z == 0.0f) return 0.0f;
+  BsdfLobes l = bsdfLobeProbabilities(p, wo);
   float alpha = ggxAlpha(p.roughness);
-  return pSpec * ggxVndfReflectionPdf(wo, wi, alpha) + (1.0f - pSpec) * cosineHemispherePdf(wi.z);
+  if (wi.z < 0.0f)
+    return l.transmission * ggxVndfReflectionPdf(wo, mirrorThroughSurface(wi), alpha);
+  return l.specular * ggxVndfReflectionPdf(wo, wi, alpha) + l.diffuse * cosineHemispherePdf(wi.z);
 }
 
 // One-sample mixture of the lobes: u.z picks the lobe, u.xy the direction.
-// Returns false (wi below the horizon, pdf = 0) when the specular lobe
-// reflects under the surface; that probability is part of the density, so
-// the caller just ends or skips the path. pdf is the mixture density.
+// Returns false (pdf = 0) when a microfacet lobe's sample leaves its side of
+// the surface; that probability is part of the density, so the caller just
+// ends or skips the path. pdf is the mixture density.
 QL_FN bool bsdfSample(BsdfParams p, vec3 wo, vec3 u, QL_OUT(vec3) wi, QL_OUT(float) pdf) {
-  float pSpec = bsdfSpecularProbability(p, wo);
+  BsdfLobes l = bsdfLobeProbabilities(p, wo);
   float alpha = ggxAlpha(p.roughness);
-  float specPdf;
-  if (u.z < pSpec) {
+  bool transmitted = false;
+  if (u.z < l.specular + l.transmission) {
     vec3 m = sampleGgxVisibleNormal(wo, alpha, vec2(u.x, u.y));
     wi = reflectAbout(wo, m);
-    specPdf = ggxD(m, alpha) / (2.0f * (wo.z + ggxLambdaTerm(wo, alpha)));
+    if (wi.z <= 0.0f) {
+      pdf = 0.0f;
+      return false;
+    }
+    transmitted = u.z >= l.specular;
+    if (transmitted) wi = mirrorThroughSurface(wi);
   } else {
     wi = sampleCosineHemisphere(vec2(u.x, u.y));
-    specPdf = ggxVndfReflectionPdf(wo, wi, alpha);
   }
-  if (wo.z <= 0.0f || wi.z <= 0.0f) {
+  if (wo.z <= 0.0f || wi.z == 0.0f) {
     pdf = 0.0f;
     return false;
   }
-  pdf = pSpec * specPdf + (1.0f - pSpec) * cosineHemispherePdf(wi.z);
+  pdf = bsdfPdf(p, wo, wi);
   return pdf > 0.0f;
 }
 
-// bsdfSample plus the path throughput factor f * cos / pdf.
+// bsdfSample plus the path throughput factor f * |cos| / pdf.
 QL_FN bool bsdfSampleWeighted(BsdfParams p, vec3 wo, vec3 u, QL_OUT(vec3) wi, QL_OUT(float) pdf,
                               QL_OUT(vec3) weight) {
   weight = vec3(0.0f);
   if (!bsdfSample(p, wo, u, wi, pdf)) return false;
-  weight = bsdfEval(p, wo, wi) * (wi.z / pdf);
+  weight = bsdfEval(p, wo, wi) * (abs(wi.z) / pdf);
   return true;
 }
 

@@ -90,7 +90,9 @@ struct GpuMaterial {
   float flags;     // kMaterial* bits, as a float value
   float normalScale;
   float alphaCutoff;
-  float pad0, pad1, pad2;
+  float transmission;  // KHR_materials_transmission transmissionFactor
+  float ior;           // KHR_materials_ior (1.5 = plain glTF)
+  float pad0;
   GpuTextureView textures[kTextureSlots];
 };
 QL_CHECK_SIZE(GpuMaterial, 192);

@@ -39,6 +39,8 @@ BsdfParams params(float roughness, float metallic, vec3 base = vec3(0.8f, 0.6f, 
   p.metallic = metallic;
   p.roughness = roughness;
   p.specular = specular;
+  p.transmission = 0.0f;
+  p.ior = 1.5f;
   return p;
 }
 
@@ -146,7 +148,9 @@ double failureProbability(const BsdfParams& p, vec3 wo, double* errorEstimate, i
       {kPiD / 2, kPiD - thetaOf(wo), kPiD}, kPiD / 2, kPiD, alpha,
       [&](vec3 wi) { return ggxVndfReflectionPdf(wo, wi, alpha); }, n);
   *errorEstimate = r.errorEstimate;
-  return bsdfSpecularProbability(p, wo) * r.value;
+  // Both microfacet lobes (reflection, and transmission, its mirror image) fail there.
+  BsdfLobes lobes = bsdfLobeProbabilities(p, wo);
+  return (lobes.specular + lobes.transmission) * r.value;
 }
 
 // Every roughness x metallic x outgoing angle of the lobe tests, with the
@@ -407,6 +411,127 @@ TEST(Bsdf, LobeProbabilityFollowsAlbedos) {
   EXPECT_GT(bsdfSpecularProbability(params(0.5f, 0.0f), outgoing(89.0)), 0.5f);
 }
 
+// Thin-walled transmission (KHR_materials_transmission): the lobe below the
+// surface is the GGX reflection lobe's mirror image, centred on -wo.
+BsdfParams transmissive(float roughness, float transmission) {
+  BsdfParams p = params(roughness, 0.0f, vec3(0.9f, 0.7f, 0.5f));
+  p.transmission = transmission;
+  return p;
+}
+
+SphereGrid throughGrid(vec3 wo, float alpha) {
+  return SphereGrid::around(kPiD / 2, kPiD, kPiD - thetaOf(wo), kPiD, alpha);
+}
+
+template <class F>
+void forEachTransmissiveCase(F&& test) {
+  for (float roughness : {0.3f, 0.6f, 1.0f})
+    for (float transmission : {0.5f, 1.0f})
+      for (double thetaDeg : {0.0, 45.0, 80.0}) {
+        vec3 wo = outgoing(thetaDeg);
+        float alpha = ggxAlpha(roughness);
+        test(transmissive(roughness, transmission), wo, mirrorGrid(wo, alpha, 0, kPiD / 2),
+             throughGrid(wo, alpha),
+             label(roughness, 0.0f, thetaDeg) + ", transmission " + std::to_string(transmission));
+      }
+}
+
+TEST(BsdfTransmission, PdfOverTheSpherePlusFailureMassIsOne) {
+  forEachTransmissiveCase([](const BsdfParams& p, vec3 wo, const SphereGrid& upper,
+                             const SphereGrid& lower, const std::string& what) {
+    auto up = integrateWithError(
+        upper, [&](vec3 wi) { return bsdfPdf(p, wo, wi); }, kQuadN);
+    auto down = integrateWithError(
+        lower, [&](vec3 wi) { return bsdfPdf(p, wo, wi); }, kQuadN);
+    EXPECT_GT(down.value, 0.05) << what;
+    double failError;
+    up.value += down.value + failureProbability(p, wo, &failError);
+    up.errorEstimate += down.errorEstimate + failError;
+    EXPECT_QUADRATURE_NEAR(up, 1.0, what);
+  });
+}
+
+TEST(BsdfTransmission, SamplesFollowPdfAboveAndBelow) {
+  constexpr int kBins = 24, kSub = 8, kSamples = 100000;
+  TestRandom rnd(91);
+  forEachTransmissiveCase([&](const BsdfParams& p, vec3 wo, const SphereGrid& upper,
+                              const SphereGrid& lower, const std::string& what) {
+    const int cells = kBins * kBins;
+    std::vector<double> observed(2 * cells + 1, 0.0);
+    for (int i = 0; i < kSamples; ++i) {
+      vec3 wi;
+      float pdf;
+      if (!bsdfSample(p, wo, rnd.next3(), wi, pdf)) {
+        observed[2 * cells] += 1.0;
+        continue;
+      }
+      int b = wi.z > 0.0f ? upper.bin(wi, kBins) : lower.bin(wi, kBins);
+      ASSERT_GE(b, 0) << what;
+      observed[(wi.z > 0.0f ? 0 : cells) + b] += 1.0;
+    }
+    auto pdfOf = [&](vec3 wi) { return bsdfPdf(p, wo, wi); };
+    auto expected = upper.binIntegrals(pdfOf, kBins, kSub);
+    auto below = lower.binIntegrals(pdfOf, kBins, kSub);
+    expected.insert(expected.end(), below.begin(), below.end());
+    double failError;
+    expected.push_back(failureProbability(p, wo, &failError, 96));
+    for (double& e : expected) e *= kSamples;
+    auto result = chiSquareTest(observed, expected);
+    EXPECT_TRUE(result.pass()) << what << ": " << result.describe();
+  });
+}
+
+TEST(BsdfTransmission, SampleWeightIsEvalTimesCosineOverPdf) {
+  TestRandom rnd(92);
+  for (float roughness : {0.0f, 0.3f, 1.0f})
+    for (double thetaDeg : {0.0, 60.0}) {
+      BsdfParams p = transmissive(roughness, 1.0f);
+      vec3 wo = outgoing(thetaDeg);
+      int below = 0;
+      for (int i = 0; i < 2000; ++i) {
+        vec3 wi, weight;
+        float pdf;
+        if (!bsdfSampleWeighted(p, wo, rnd.next3(), wi, pdf, weight)) continue;
+        below += wi.z < 0.0f;
+        float evalPdf = bsdfPdf(p, wo, wi);
+        ASSERT_NEAR(pdf, evalPdf, 1e-3f * evalPdf);
+        vec3 expected = bsdfEval(p, wo, wi) * std::abs(wi.z) / evalPdf;
+        for (int c = 0; c < 3; ++c)
+          ASSERT_NEAR(weight[c], expected[c], 1e-3f * expected[c] + 1e-6f);
+      }
+      EXPECT_GT(below, 800) << "a fully transmissive surface mostly transmits";
+    }
+}
+
+// A white, fully transmissive wall reflects plus transmits at most what it
+// receives, and lets through what the dielectric layer does not reflect of
+// what its microfacet lobe carries.
+TEST(BsdfTransmission, WhiteWallPassesWhatItDoesNotReflect) {
+  for (float roughness : {0.3f, 0.6f, 1.0f})
+    for (double thetaDeg : {0.0, 30.0}) {
+      BsdfParams p = params(roughness, 0.0f, vec3(1.0f));
+      p.transmission = 1.0f;
+      vec3 wo = outgoing(thetaDeg);
+      float alpha = ggxAlpha(roughness);
+      auto fCos = [&](vec3 wi) { return bsdfEval(p, wo, wi).x * std::abs(wi.z); };
+      auto up = integrateWithError(mirrorGrid(wo, alpha, 0, kPiD / 2), fCos, kQuadN);
+      auto down = integrateWithError(throughGrid(wo, alpha), fCos, kQuadN);
+      std::string what = label(roughness, 0.0f, thetaDeg);
+      EXPECT_LE(up.value + down.value,
+                1.0 + kFloatFloor + 3.0 * (up.errorEstimate + down.errorEstimate))
+          << what;
+      // Through: the GGX lobe's own albedo (a white metal's) times 1 - F(wo.h),
+      // which is 0.96 at most and, for these lobes, not under 0.85.
+      BsdfParams metal = params(roughness, 1.0f, vec3(1.0f));
+      auto lobe = integrateWithError(
+          mirrorGrid(wo, alpha, 0, kPiD / 2),
+          [&](vec3 wi) { return bsdfEvalSpecular(metal, wo, wi).x * wi.z; }, kQuadN);
+      EXPECT_LT(down.value, 0.96 * lobe.value + 3.0 * (down.errorEstimate + lobe.errorEstimate))
+          << what;
+      EXPECT_GT(down.value, 0.85 * lobe.value) << what;
+    }
+}
+
 }  // namespace
 }  // namespace qlight::shared
 
@@ -421,6 +546,8 @@ TEST(Bsdf, SpecularZeroIsExactlyLambertian) {
   p.metallic = 0.0f;
   p.roughness = 0.3f;
   p.specular = 0.0f;
+  p.transmission = 0.0f;
+  p.ior = 1.5f;
   for (float a : {0.1f, 0.7f, 1.4f}) {
     vec3 wo = normalize(vec3(std::sin(a), 0.0f, std::cos(a)));
     EXPECT_EQ(bsdfSpecularProbability(p, wo), 0.0f);

@@ -6,6 +6,7 @@
 #include <glm/gtc/quaternion.hpp>
 #include <glm/gtx/quaternion.hpp>
 
+#include "engine/guiding/guiding_settings.h"
 #include "engine/scene/procedural.h"
 #include "engine/scene/tangents.h"
 #include "tests/render/render_support.h"
@@ -330,6 +331,51 @@ TEST_F(MaterialFeatures, AlphaBlendIsStochasticTransparencyForEveryRay) {
     EXPECT_NEAR(m.mean, want, 5.0 * m.standardError() + 1e-4) << "channel " << c;
     // Sharp enough to tell a plane ignored by shadow rays (0.75 instead of 0.5625).
     EXPECT_LT(5.0 * m.standardError(), 0.1 * want) << "channel " << c;
+  }
+}
+
+// KHR_materials_transmission: a smooth, thin, fully transmissive pane at y = 1 over a white
+// Lambertian floor, under the uniform fallback sky (radiance 1). Shadow rays stop at the pane;
+// light reaches the floor through it by scattered paths (floor -> pane -> sky, with NEE at the
+// pane), each direction passing 1 - F(mu), so the floor shows
+// 2 int (1 - F(mu)) mu dmu = 1 - F0 - (1 - F0) / 21 = 0.9143 (F0 0.04).
+// Also with Q-guiding (learning while the image accumulates): still the same floor.
+TEST_F(MaterialFeatures, AThinGlassPaneTransmitsTheSky) {
+  for (auto [transmission, guided] : {std::pair{1.0f, false}, {1.0f, true}, {0.0f, false}}) {
+    scene::SceneAsset s;
+    scene::MaterialAsset floor, pane;
+    floor.metallicFactor = 0.0f;
+    floor.specularFactor = 0.0f;
+    pane.metallicFactor = 0.0f;
+    pane.roughnessFactor = 0.0f;
+    pane.transmissionFactor = transmission;
+    s.materials = {floor, pane};
+    scene::MeshAsset mesh;
+    const float r = 400.0f;
+    scene::addQuad(mesh, {-r, 0, r}, {r, 0, r}, {r, 0, -r}, {-r, 0, -r}, 0);
+    scene::addQuad(mesh, {-r, 1, r}, {r, 1, r}, {r, 1, -r}, {-r, 1, -r}, 1);
+    scene::addMeshAtOrigin(s, mesh);
+    scene::addCameraNode(s, 0.1f, {0, 0.5f, 0}, glm::quatLookAt(glm::vec3(0, -1, 0), {0, 0, -1}));
+    scene::refreshBounds(s);
+    render::RenderSettings settings = smallSettings(16, 16, 17);
+    settings.maxDepth = 2;  // floor, pane, sky
+    settings.samplesPerFrame = 2;
+    guiding::GuidingSettings g;
+    g.enabled = guided;
+    auto out = session::renderScene(ctx(), s, settings, 64, 0.0f, g);
+    if (guided) EXPECT_GT(out.stats.guidingStats.points, 10u);
+    ASSERT_TRUE(out.stats.fallbackSky);
+    std::vector<double> values;
+    for (size_t k = 0; k < out.image.rgba.size(); k += 4) values.push_back(out.image.rgba[k + 1]);
+    const Moments m = moments(values);
+    if (transmission == 0.0f) {
+      EXPECT_LT(m.mean, 0.01) << "an opaque pane shuts the sky out";
+      continue;
+    }
+    const double want = 1.0 - 0.04 - 0.96 / 21.0;
+    // 5 standard errors, plus 1% for the pane's GGX lobe at the roughness floor.
+    EXPECT_NEAR(m.mean, want, 5.0 * m.standardError() + 0.01 * want)
+        << (guided ? "guided, " : "") << "standard error " << m.standardError();
   }
 }
 
