@@ -34,6 +34,9 @@ void main() {
   s.shadowPoint = kNoCachePoint;
   s.shadowLight = 0u;
   s.vertices = s.covered = s.rays = s.shadowRays = 0u;
+  // A pixel's ray cone: no width at the eye, one pixel's angle of spread.
+  s.coneWidth = 0.0;
+  s.coneSpread = 2.0 * cam.tanHalfFovY / float(frame.resolution.y);
   storePath(path, s);
   queueOut[path] = path;  // every path starts in queue 0 (its count is set by pt_queue)
 }

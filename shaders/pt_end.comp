@@ -37,7 +37,7 @@ void main() {
   addStat(kStatShadowRays, counters.w);
   addStat(kStatPaths, inside ? 1u : 0u);
   addStat(kStatEmitterHits, (flags & kPathEmitterHit) != 0u ? 1u : 0u);
-  addStat(kStatPathVertices, counters.x);
+  addStat(kStatPathVertices, counters.x & 0xffffu);
   addStat(kStatInvalidSamples, invalid);
-  addStat(kStatCoveredVertices, counters.y);
+  addStat(kStatCoveredVertices, counters.x >> 16u);
 }

@@ -106,7 +106,8 @@ Surface hitSurface(PathState st) {
   hit.v = st.hitV;
   hit.instance = st.hitInstance;
   hit.primitive = st.hitPrimitive;
-  return resolveSurface(hit, st.origin, st.dir);
+  return resolveSurfaceWithCone(hit, st.origin, st.dir,
+                                st.coneWidth + st.coneSpread * st.hitT * length(st.dir));
 }
 
 // Emission at the hit; after the camera ray, MIS-weighted against NEE having
@@ -246,6 +247,9 @@ void sampleDirectLight(inout PathState st, inout Rng rng, Vertex v, ScatterMix m
   }
 }
 
+// Radians a diffuse bounce adds to a ray cone's spread (a wide lobe: coarse texture levels).
+const float kDiffuseConeSpread = 0.25;
+
 // The next direction from the mixture, and the path moved onto it. Returns
 // false when no usable direction came out (the path ends).
 bool sampleScatter(inout PathState st, inout Rng rng, Vertex v, ScatterMix m, RayOrigins o,
@@ -279,6 +283,11 @@ bool sampleScatter(inout PathState st, inout Rng rng, Vertex v, ScatterMix m, Ra
     // The Q entry this direction updates once the next vertex is known.
     st.prevEntry = learn && m.point != kNoCachePoint && pointLocal.z > 0.0 ? m.row.base + k
                                                                            : kNoCachePoint;
+    // The ray cone after the bounce: its width here, spread by the lobe (a diffuse bounce
+    // blurs what the next hit reads from its textures, a glossy one by its roughness).
+    st.coneWidth += st.coneSpread * st.hitT * length(st.dir);
+    float glossy = (1.0 - bsdfDiffuseProbability(v.bsdf, v.wo)) * (1.0 - m.guideShare);
+    st.coneSpread += mix(kDiffuseConeSpread, 2.0 * ggxAlpha(v.bsdf.roughness), glossy);
     st.origin = originToward(o, v, wiWorld);
     st.dir = wiWorld;
   }

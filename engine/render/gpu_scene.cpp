@@ -9,6 +9,7 @@
 
 #include "engine/render/environment_tables.h"
 #include "engine/render/scene_packing.h"
+#include "engine/render/texture_mips.h"
 #include "shaders/shared/bvh_types.h"
 #include "shaders/shared/environment.h"
 #include "shaders/shared/sampling.h"
@@ -152,21 +153,23 @@ void GpuScene::uploadStatic() {
   }
   if (materials.empty()) materials.push_back(packMaterial(scene::MaterialAsset{}));
 
-  // Refused before anything is allocated: all textures share one texel buffer.
+  // Refused before anything is allocated: all textures share one texel buffer, mipmaps
+  // included.
   uint64_t texelCount = 0;
-  for (const scene::TextureAsset& t : asset_.textures) texelCount += uint64_t(t.width) * t.height;
+  for (const scene::TextureAsset& t : asset_.textures)
+    texelCount += mipChainTexels(t.width, t.height);
   ctx_.requireBufferFits("the scene's textures (" + std::to_string(asset_.textures.size()) +
                              " images, " + std::to_string(texelCount) +
-                             " texels; use smaller or fewer images)",
+                             " texels with their mipmaps; use smaller or fewer images)",
                          texelCount * 4, false, texelCount);
   std::vector<GpuTexture> textures;
   std::vector<uint32_t> texels;
   for (const scene::TextureAsset& t : asset_.textures) {
-    textures.push_back({uint32_t(texels.size()), t.width, t.height, textureFlags(t)});
-    size_t n = size_t(t.width) * t.height;
-    size_t start = texels.size();
-    texels.resize(start + n);
-    std::memcpy(texels.data() + start, t.rgba8.data(), n * 4);
+    const uint32_t levels = mipLevelCount(t.width, t.height);
+    textures.push_back({uint32_t(texels.size()), t.width, t.height,
+                        textureFlags(t) | (levels << shared::kTextureLevelShift)});
+    const std::vector<uint32_t> chain = buildMipChain(t);
+    texels.insert(texels.end(), chain.begin(), chain.end());
   }
   if (texels.empty()) texels.push_back(0xffffffffu);
   if (textures.empty()) textures.push_back({0, 1, 1, 0});

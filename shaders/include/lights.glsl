@@ -51,7 +51,7 @@ vec3 triangleLightRadiance(GpuLight l, vec2 b) {
     uv1 = w.x * vertexExtrasAt(tri.vertexExtras, tri.v0).uv1 +
           w.y * vertexExtrasAt(tri.vertexExtras, tri.v1).uv1 +
           w.z * vertexExtrasAt(tri.vertexExtras, tri.v2).uv1;
-  return l.emission * sampleMaterialTexture(tri.material, kTextureSlotEmissive, uv0, uv1).rgb;
+  return l.emission * sampleMaterialTexture(tri.material, kTextureSlotEmissive, uv0, uv1, kFinestLod).rgb;
 }
 
 // Solid-angle pdf of sampling direction `dir` toward a point on triangle light `l`

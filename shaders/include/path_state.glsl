@@ -34,6 +34,8 @@ struct PathState {
   uint shadowLight;
   uint vertices;         // path length up to the first emitter reached (D&K)
   uint covered;          // vertices that found a cache point
+  float coneWidth;       // the ray cone at the origin: its width (world units)
+  float coneSpread;      // and its spread angle (radians), for texture filtering
   uint rays;
   uint shadowRays;
 };
@@ -62,7 +64,8 @@ PathState loadPath(uint path) {
   s.hitPrimitive = floatBitsToUint(t.x); s.shadowTarget = t.y;
   s.shadowPoint = floatBitsToUint(t.z); s.shadowLight = floatBitsToUint(t.w);
   uvec4 c = floatBitsToUint(pathTexel(path, kPathTexelCounters));
-  s.vertices = c.x; s.covered = c.y; s.rays = c.z; s.shadowRays = c.w;
+  s.vertices = c.x & 0xffffu; s.covered = c.x >> 16u; s.rays = c.z; s.shadowRays = c.w;
+  vec2 cone = unpackHalf2x16(c.y); s.coneWidth = cone.x; s.coneSpread = cone.y;
   return s;
 }
 
@@ -80,5 +83,7 @@ void storePath(uint path, PathState s) {
                vec4(uintBitsToFloat(s.hitPrimitive), s.shadowTarget, uintBitsToFloat(s.shadowPoint),
                     uintBitsToFloat(s.shadowLight)));
   setPathTexel(path, kPathTexelCounters,
-               uintBitsToFloat(uvec4(s.vertices, s.covered, s.rays, s.shadowRays)));
+               uintBitsToFloat(uvec4(s.vertices | (s.covered << 16u),
+                                     packHalf2x16(vec2(s.coneWidth, s.coneSpread)), s.rays,
+                                     s.shadowRays)));
 }

@@ -97,6 +97,10 @@ struct Surface {
   vec2 uv1;
   vec4 color;    // COLOR_0, white without
   vec4 tangent;  // world xyz (not unit), w = +-1; w = 0: none
+  // log2 of the uv extent of one world unit on the triangle: 0.5 log2(uv area / world area)
+  float uvDensity;
+  // log2 of the ray footprint's side in uv units (ray cones; kFinestLod without a cone)
+  float textureLod;
   uint material;
   uint triangle;   // GpuTriangle index
   float extent;    // the largest magnitude the hit was computed from (ray offsets)
@@ -116,9 +120,18 @@ vec4 texel(GpuTexture t, int x, int y) {
   return c;
 }
 
-// Bilinear (or nearest) lookup without mipmaps; linear values.
-vec4 sampleTextureAt(int index, vec2 uv) {
-  GpuTexture t = textures[index];
+// Level `level` of a texture's mip chain, as a texture of its own.
+GpuTexture textureLevel(GpuTexture t, uint level) {
+  for (uint i = 0u; i < level; ++i) {
+    t.offset += t.width * t.height;
+    t.width = max(t.width / 2u, 1u);
+    t.height = max(t.height / 2u, 1u);
+  }
+  return t;
+}
+
+// Bilinear (or nearest) lookup in one level; linear values.
+vec4 bilinear(GpuTexture t, vec2 uv) {
   vec2 p = uv * vec2(t.width, t.height) - 0.5;
   if ((t.flags & kTextureNearest) != 0u) return texel(t, int(floor(p.x + 0.5)), int(floor(p.y + 0.5)));
   ivec2 i = ivec2(floor(p));
@@ -127,20 +140,39 @@ vec4 sampleTextureAt(int index, vec2 uv) {
              mix(texel(t, i.x, i.y + 1), texel(t, i.x + 1, i.y + 1), f.x), f.y);
 }
 
+// Trilinear lookup: lod is log2 of the footprint's side in uv units (kFinestLod: level 0);
+// the level is lod + log2 of the texture's side, between 0 and its last.
+const float kFinestLod = -64.0;
+vec4 sampleTextureAt(int index, vec2 uv, float lod) {
+  GpuTexture t = textures[index];
+  uint levels = max(t.flags >> kTextureLevelShift, 1u);
+  float level = lod + 0.5 * log2(float(t.width) * float(t.height));
+  level = isnan(level) ? 0.0 : clamp(level, 0.0, float(levels - 1u));
+  uint l0 = uint(level);
+  GpuTexture a = textureLevel(t, l0);
+  vec4 c = bilinear(a, uv);
+  float f = level - float(l0);
+  if (f > 0.0) c = mix(c, bilinear(textureLevel(a, 1u), uv), f);
+  return c;
+}
+
 // A material's texture slot at UV sets (uv0, uv1), through its KHR_texture_transform;
 // white when the slot has no texture.
-vec4 sampleMaterialTexture(uint material, uint slot, vec2 uv0, vec2 uv1) {
+// lod: log2 of the footprint's side in the mesh's uv units (the transform's scale is
+// added here).
+vec4 sampleMaterialTexture(uint material, uint slot, vec2 uv0, vec2 uv1, float lod) {
   if (!kUseTextures) return vec4(1.0);
   GpuTextureView v = textureViewAt(material, slot);
   int index = int(v.vRow.w);
   if (index < 0) return vec4(1.0);
   vec2 uv = v.uRow.w > 0.5 ? uv1 : uv0;
   uv = vec2(dot(v.uRow.xy, uv) + v.uRow.z, dot(v.vRow.xy, uv) + v.vRow.z);
-  return sampleTextureAt(index, uv);
+  float det = abs(v.uRow.x * v.vRow.y - v.uRow.y * v.vRow.x);
+  return sampleTextureAt(index, uv, lod + 0.5 * log2(max(det, 1e-20)));
 }
 
 vec4 surfaceTexture(Surface s, uint slot) {
-  return sampleMaterialTexture(s.material, slot, s.uv0, s.uv1);
+  return sampleMaterialTexture(s.material, slot, s.uv0, s.uv1, s.textureLod);
 }
 
 vec3 toWorldNormal(GpuInstance inst, vec3 n) {
@@ -168,7 +200,8 @@ vec3 normalMapped(Surface s, vec3 n) {
   return mappedLength > 1e-8 && !isnan(mappedLength) ? mapped / mappedLength : n;
 }
 
-Surface resolveSurface(BvhHit hit, vec3 origin, vec3 dir) {
+// coneWidth: the ray cone's width at the hit (0: none, textures at their finest level).
+Surface resolveSurfaceWithCone(BvhHit hit, vec3 origin, vec3 dir, float coneWidth) {
   GpuInstance inst = instances[hit.instance];
   Surface s;
   s.triangle = inst.firstTriangle + hit.primitive;
@@ -194,11 +227,19 @@ Surface resolveSurface(BvhHit hit, vec3 origin, vec3 dir) {
     s.tangent = vec4(toWorldTangent(inst, t), ea.tangent.w < 0.0 ? -1.0 : 1.0);
   }
   s.material = tri.material;
+  vec2 du1 = vec2(b.u, b.v) - vec2(a.u, a.v), du2 = vec2(c.u, c.v) - vec2(a.u, a.v);
+  vec3 e1 = toWorldTangent(inst, b.position - a.position);
+  vec3 e2 = toWorldTangent(inst, c.position - a.position);
+  s.uvDensity = 0.5 * log2(max(abs(du1.x * du2.y - du1.y * du2.x), 1e-30) /
+                           max(length(cross(e1, e2)), 1e-30));
+  s.textureLod = kFinestLod;
   // M^-T (e1 x e2) is the world normal of the glTF front face, mirrored transforms included.
   vec3 ng = normalize(toWorldNormal(inst, cross(b.position - a.position, c.position - a.position)));
   vec3 ns = toWorldNormal(inst, w * a.normal + hit.u * b.normal + hit.v * c.normal);
   float nsLength = length(ns);
   ns = nsLength > 1e-8 && !isnan(nsLength) ? ns / nsLength : ng;
+  if (coneWidth > 0.0)  // the footprint grows as 1 / cos on a slanted surface
+    s.textureLod = log2(coneWidth / max(abs(dot(ng, dir)) / length(dir), 1e-3)) + s.uvDensity;
   if (kUseTextures && kUseVertexExtras && s.tangent.w != 0.0) ns = normalMapped(s, ns);
   s.frontFace = dot(ng, dir) < 0.0;
   if (!s.frontFace) ng = -ng;
@@ -206,6 +247,10 @@ Surface resolveSurface(BvhHit hit, vec3 origin, vec3 dir) {
   s.geometricNormal = ng;
   s.shadingNormal = ns;
   return s;
+}
+
+Surface resolveSurface(BvhHit hit, vec3 origin, vec3 dir) {
+  return resolveSurfaceWithCone(hit, origin, dir, 0.0);
 }
 
 // Base colour times COLOR_0 and the base colour texture, alpha included.
@@ -256,7 +301,7 @@ bool alphaAcceptsHit(uint instance, uint primitive, float u, float v, vec3 origi
     uv1 = w * a.uv1 + u * b.uv1 + v * c.uv1;
     alpha *= w * a.color.a + u * b.color.a + v * c.color.a;
   }
-  alpha *= sampleMaterialTexture(tri.material, kTextureSlotBaseColor, uv0, uv1).a;
+  alpha *= sampleMaterialTexture(tri.material, kTextureSlotBaseColor, uv0, uv1, kFinestLod).a;
   if ((flags & kMaterialAlphaMask) != 0u) return alpha >= m.alphaCutoff;
   uint h = pcgHash(floatBitsToUint(origin.x) ^ pcgHash(floatBitsToUint(origin.y) ^
            pcgHash(floatBitsToUint(origin.z) ^ pcgHash(floatBitsToUint(dir.x) ^

@@ -106,6 +106,9 @@ QL_CONST uint kTextureClampS = 4u;
 QL_CONST uint kTextureClampT = 8u;
 QL_CONST uint kTextureMirrorS = 16u;
 QL_CONST uint kTextureMirrorT = 32u;
+// flags >> kTextureLevelShift: mip levels, stored level 0 first from offset, each half the
+// previous size (at least 1).
+QL_CONST uint kTextureLevelShift = 8u;
 struct GpuTexture {
   uint offset;
   uint width;
@@ -216,7 +219,8 @@ QL_CONST uint kPathTexelShadowDir = 5u;           // shadowDir, prevPoint
 QL_CONST uint kPathTexelShadowContribution = 6u;  // shadowContribution, prevEntry
 QL_CONST uint kPathTexelHit = 7u;                 // hitT, hitU, hitV, hitInstance
 QL_CONST uint kPathTexelShadowLearning = 8u;      // hitPrimitive, shadowTarget, -Point, -Light
-QL_CONST uint kPathTexelCounters = 9u;            // vertices, covered, rays, shadowRays
+QL_CONST uint kPathTexelCounters =
+    9u;  // vertices | covered << 16, half2(cone width, cone spread), rays, shadowRays
 // Learning from returns (shaders/include/learning_returns.glsl): the last
 // kReturnRecords vertices' Q entry, radiance so far and throughput, a ring.
 QL_CONST uint kReturnRecords = 4u;

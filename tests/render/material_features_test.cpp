@@ -105,6 +105,35 @@ INSTANTIATE_TEST_SUITE_P(OffsetsRotationsScales, TextureTransform,
                                            TransformCase{{0.0f, 0.0f}, 0.0f, {2.0f, 1.0f}},
                                            TransformCase{{-0.2f, -0.1f}, 0.3f, {1.5f, 1.5f}}));
 
+class TextureFiltering : public GpuTest, public ::testing::WithParamInterface<bool> {};
+
+// Mipmaps chosen by the ray cone: a 64 x 64 checkerboard of single black and white texels on
+// a quad filling a 16 x 16 image puts 4 x 4 texels under each pixel, so every pixel reads
+// level 2, their exact mean 0.5 in linear light, even in one sample (without mipmaps a sample
+// reads 0 or 1). sRGB textures are averaged in linear light, not in their encoding (which
+// would show 0.21).
+TEST_P(TextureFiltering, ADenseCheckerboardIsFilteredToItsLinearMean) {
+  const bool srgb = GetParam();
+  scene::MaterialAsset m;
+  m.baseColorTexture.index = 0;
+  scene::SceneAsset s = unlitQuadFillingTheView(m);
+  scene::TextureAsset checker;
+  checker.width = checker.height = 64;
+  checker.srgb = srgb;
+  for (uint32_t y = 0; y < 64; ++y)
+    for (uint32_t x = 0; x < 64; ++x) {
+      const uint8_t v = (x + y) % 2 ? 255 : 0;
+      checker.rgba8.insert(checker.rgba8.end(), {v, v, v, 255});
+    }
+  s.textures.push_back(checker);
+  const image::LinearImage img = renderUnlit(ctx(), s);
+  for (uint32_t y = 1; y + 1 < kSize; ++y)
+    for (uint32_t x = 1; x + 1 < kSize; ++x)
+      ASSERT_NEAR(pixel(img, x, y).g, 0.5, 0.01) << "pixel " << x << "," << y;
+}
+
+INSTANTIATE_TEST_SUITE_P(LinearAndSrgb, TextureFiltering, ::testing::Bool());
+
 using MaterialFeatures = GpuTest;
 
 // COLOR_0 multiplies the base colour, interpolated across each triangle.
