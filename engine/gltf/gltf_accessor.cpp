@@ -234,6 +234,18 @@ size_t accessorCount(const tinygltf::Model& model, int accessor, const std::stri
   return a.count;
 }
 
+namespace {
+// The element converter of float accessors: a value that is not finite fails the load.
+auto finiteFloats(int index, LoadContext& ctx) {
+  return [index, &ctx](double v, size_t element) {
+    if (!std::isfinite(v))
+      ctx.fail("accessor " + std::to_string(index) +
+               " holds a non-finite value (NaN or Inf) at element " + std::to_string(element));
+    return float(v);
+  };
+}
+}  // namespace
+
 std::vector<float> readFloatAccessor(const tinygltf::Model& model, int index,
                                      FloatAccessorRule rule, const std::string& use,
                                      LoadContext& ctx) {
@@ -248,15 +260,7 @@ std::vector<float> readFloatAccessor(const tinygltf::Model& model, int index,
   if (!isFloat && !(rule.allowNormalizedIntegers && a.normalized))
     ctx.fail(owner + (rule.allowNormalizedIntegers ? " must be FLOAT or a normalized integer"
                                                    : " must be FLOAT"));
-  return readElements<float>(
-      model, index, rule.components,
-      [&](double v, size_t element) {
-        if (!std::isfinite(v))
-          ctx.fail("accessor " + std::to_string(index) +
-                   " holds a non-finite value (NaN or Inf) at element " + std::to_string(element));
-        return float(v);
-      },
-      ctx);
+  return readElements<float>(model, index, rule.components, finiteFloats(index, ctx), ctx);
 }
 
 std::vector<uint32_t> readIndexAccessor(const tinygltf::Model& model, int index,
@@ -295,15 +299,7 @@ std::vector<float> readMat4Accessor(const tinygltf::Model& model, int index, con
   checkCount(a, index, ctx);
   if (a.type != TINYGLTF_TYPE_MAT4 || a.componentType != TINYGLTF_COMPONENT_TYPE_FLOAT)
     ctx.fail(owner + " must be a MAT4 of FLOAT");
-  return readElements<float>(
-      model, index, 16,
-      [&](double v, size_t element) {
-        if (!std::isfinite(v))
-          ctx.fail("accessor " + std::to_string(index) +
-                   " holds a non-finite value (NaN or Inf) at element " + std::to_string(element));
-        return float(v);
-      },
-      ctx);
+  return readElements<float>(model, index, 16, finiteFloats(index, ctx), ctx);
 }
 
 }  // namespace qlight::gltf::detail

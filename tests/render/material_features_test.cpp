@@ -278,21 +278,31 @@ INSTANTIATE_TEST_SUITE_P(
 // A red plane at y = 1 over a green floor, both Lambertian, under a directional light of
 // irradiance 3 straight down, seen from above (image x = world x, over x in [-0.8, 0.8]).
 // Direct light only (maxDepth 1): a surface lit at normal incidence shows 3 / pi.
-scene::SceneAsset planeOverFloor(scene::MaterialAsset plane) {
+// A Lambertian floor (y = 0, 800 units wide) of colour `floor` under a square of `plane` at
+// y = 1, 2 x halfSize wide, u along +x; looked down at by a narrow camera at height `eye`.
+scene::SceneAsset floorUnderPlane(glm::vec3 floorColour, scene::MaterialAsset plane, float halfSize,
+                                  float eye, float yfov) {
   scene::SceneAsset s;
   scene::MaterialAsset floor;
-  floor.baseColorFactor = glm::vec4(0, 1, 0, 1);
+  floor.baseColorFactor = glm::vec4(floorColour, 1.0f);
   floor.metallicFactor = 0.0f;
   floor.specularFactor = 0.0f;
   plane.metallicFactor = 0.0f;
-  plane.specularFactor = 0.0f;
-  plane.doubleSided = true;
   s.materials = {floor, plane};
   scene::MeshAsset mesh;
-  const float r = 20.0f;
+  const float r = 400.0f, h = halfSize;
   scene::addQuad(mesh, {-r, 0, r}, {r, 0, r}, {r, 0, -r}, {-r, 0, -r}, 0);
-  scene::addQuad(mesh, {-1, 1, 1}, {1, 1, 1}, {1, 1, -1}, {-1, 1, -1}, 1);  // u along +x
+  scene::addQuad(mesh, {-h, 1, h}, {h, 1, h}, {h, 1, -h}, {-h, 1, -h}, 1);
   scene::addMeshAtOrigin(s, mesh);
+  scene::addCameraNode(s, yfov, {0, eye, 0}, glm::quatLookAt(glm::vec3(0, -1, 0), {0, 0, -1}));
+  scene::refreshBounds(s);
+  return s;
+}
+
+scene::SceneAsset planeOverFloor(scene::MaterialAsset plane) {
+  plane.specularFactor = 0.0f;
+  plane.doubleSided = true;
+  scene::SceneAsset s = floorUnderPlane({0, 1, 0}, plane, 1.0f, 5.0f, 2.0f * std::atan(0.2f));
   scene::LightAsset sun;
   sun.type = scene::LightType::Directional;
   sun.intensity = 3.0f;
@@ -301,8 +311,6 @@ scene::SceneAsset planeOverFloor(scene::MaterialAsset plane) {
   s.lights.push_back(sun);
   sunNode.local.rotation = glm::rotation(glm::vec3(0, 0, -1), glm::vec3(0, -1, 0));
   scene::addNode(s, sunNode);
-  scene::addCameraNode(s, 2.0f * std::atan(0.2f), {0, 5, 0},
-                       glm::quatLookAt(glm::vec3(0, -1, 0), {0, 0, -1}));
   scene::refreshBounds(s);
   return s;
 }
@@ -371,21 +379,10 @@ TEST_F(MaterialFeatures, AlphaBlendIsStochasticTransparencyForEveryRay) {
 // Also with Q-guiding (learning while the image accumulates): still the same floor.
 TEST_F(MaterialFeatures, AThinGlassPaneTransmitsTheSky) {
   for (auto [transmission, guided] : {std::pair{1.0f, false}, {1.0f, true}, {0.0f, false}}) {
-    scene::SceneAsset s;
-    scene::MaterialAsset floor, pane;
-    floor.metallicFactor = 0.0f;
-    floor.specularFactor = 0.0f;
-    pane.metallicFactor = 0.0f;
+    scene::MaterialAsset pane;
     pane.roughnessFactor = 0.0f;
     pane.transmissionFactor = transmission;
-    s.materials = {floor, pane};
-    scene::MeshAsset mesh;
-    const float r = 400.0f;
-    scene::addQuad(mesh, {-r, 0, r}, {r, 0, r}, {r, 0, -r}, {-r, 0, -r}, 0);
-    scene::addQuad(mesh, {-r, 1, r}, {r, 1, r}, {r, 1, -r}, {-r, 1, -r}, 1);
-    scene::addMeshAtOrigin(s, mesh);
-    scene::addCameraNode(s, 0.1f, {0, 0.5f, 0}, glm::quatLookAt(glm::vec3(0, -1, 0), {0, 0, -1}));
-    scene::refreshBounds(s);
+    const scene::SceneAsset s = floorUnderPlane(glm::vec3(1.0f), pane, 400.0f, 0.5f, 0.1f);
     render::RenderSettings settings = smallSettings(16, 16, 17);
     settings.maxDepth = 2;  // floor, pane, sky
     settings.samplesPerFrame = 2;
