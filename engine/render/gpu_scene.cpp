@@ -13,6 +13,7 @@
 #include "shaders/shared/bvh_types.h"
 #include "shaders/shared/environment.h"
 #include "shaders/shared/sampling.h"
+#include "shaders/shared/specialization.h"
 
 namespace qlight::render {
 namespace {
@@ -356,6 +357,23 @@ uint64_t GpuScene::memoryBytes() const {
                         &bvhTris_, &bvhInstances_, &instances_, &lightBuffer_, &lightCdf_})
     if (*b) bytes += (*b)->size();
   return bytes;
+}
+
+uint32_t featureKey(const std::vector<uint32_t>& features) {
+  uint32_t key = 0;
+  for (uint32_t id = shared::kSpecUseTextures; id < features.size(); ++id)
+    key |= (features[id] != 0 ? 1u : 0u) << (id - shared::kSpecUseTextures);
+  return key;
+}
+
+std::vector<uint32_t> GpuScene::specializationFeatures() const {
+  std::vector<uint32_t> features(shared::kSpecPathFeatureCount, 0);
+  features[shared::kSpecUseTextures] = hasTextures();
+  features[shared::kSpecUseNonTriangleLights] = hasNonTriangleLights();
+  features[shared::kSpecUseVertexExtras] = hasVertexExtras();
+  features[shared::kSpecUseEnvironmentMap] = hasEnvironmentMap();
+  features[shared::kSpecUseAlphaTest] = hasAlphaTest();
+  return features;
 }
 
 void GpuScene::bind(gpu::PassBuilder& pass) const {

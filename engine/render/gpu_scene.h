@@ -21,6 +21,9 @@ struct SceneLightingOptions {
   float fallbackSkyRadiance = 1.0f;
 };
 
+// One bit per feature of a specialization vector: the key of a pipeline variant.
+uint32_t featureKey(const std::vector<uint32_t>& features);
+
 class GpuScene {
  public:
   GpuScene(const gpu::Context& ctx, const scene::SceneAsset& asset,
@@ -52,6 +55,9 @@ class GpuScene {
   bool hasTextures() const { return hasTextures_; }
   bool hasVertexExtras() const { return hasVertexExtras_; }  // TEXCOORD_1, COLOR_0, tangents
   bool hasAlphaTest() const { return hasAlphaTest_; }        // some material is MASK or BLEND
+  // The specialization constants of shaders/include/features.glsl that the scene decides
+  // (guiding's stay 0), indexed by constant id.
+  std::vector<uint32_t> specializationFeatures() const;
   bool hasNonTriangleLights() const {
     return hasNonTriangleLights_;
   }  // world space, of the last update

@@ -94,18 +94,10 @@ void PathTracer::resetAccumulation() {
 const gpu::ComputePipeline& PathTracer::specialized(const char* shader, const GpuScene& scene,
                                                     const GuideFeatures& guide) {
   // Specialization constants of shaders/include/features.glsl.
-  std::vector<uint32_t> features(shared::kSpecPathFeatureCount, 0);
-  features[shared::kSpecUseTextures] = scene.hasTextures();
+  std::vector<uint32_t> features = scene.specializationFeatures();
   features[shared::kSpecUseGuiding] = guide.points;
   features[shared::kSpecUseLightLearning] = guide.lightLearning;
-  features[shared::kSpecUseNonTriangleLights] = scene.hasNonTriangleLights();
-  features[shared::kSpecUseVertexExtras] = scene.hasVertexExtras();
-  features[shared::kSpecUseEnvironmentMap] = scene.hasEnvironmentMap();
-  features[shared::kSpecUseAlphaTest] = scene.hasAlphaTest();
-  uint32_t key = 0;  // one bit per feature
-  for (uint32_t id = shared::kSpecUseTextures; id < features.size(); ++id)
-    key |= features[id] << (id - shared::kSpecUseTextures);
-  auto& slot = variants_[{shader, key}];
+  auto& slot = variants_[{shader, featureKey(features)}];
   if (!slot) slot = std::make_unique<gpu::ComputePipeline>(ctx_, shader, features);
   return *slot;
 }

@@ -6,6 +6,7 @@
 // `iterations` x atrous. output() has the accumulation's format (rgb sum, a weight), so the
 // display pass reads it as it reads the accumulation.
 #pragma once
+#include <map>
 #include <memory>
 
 #include "engine/gpu/buffer.h"
@@ -46,7 +47,8 @@ class DisplayFilter {
   void resize(uint32_t width, uint32_t height);
 
   const gpu::Context& ctx_;
-  gpu::ComputePipeline gbuffer_, temporal_, atrous_;
+  std::map<uint32_t, std::unique_ptr<gpu::ComputePipeline>> gbufferVariants_;
+  gpu::ComputePipeline temporal_, atrous_;
   gpu::Buffer uniforms_;
   // Ping-pong pairs: this frame's and the last frame's (index current_).
   std::unique_ptr<gpu::Image> gbuffers_[2], outputs_[2], filtered_[2];
