@@ -244,7 +244,8 @@ bool isSupportedRequiredExtension(const std::string& name) {
   return name == "KHR_lights_punctual" || name == "EXT_mesh_gpu_instancing" ||
          name == "KHR_materials_emissive_strength" || name == "KHR_materials_specular" ||
          name == "KHR_texture_transform" || name == "KHR_materials_unlit" ||
-         name == "KHR_materials_transmission" || name == "KHR_materials_ior";
+         name == "KHR_materials_transmission" || name == "KHR_materials_ior" ||
+         name == "KHR_materials_volume";
 }
 
 CheckedGltfFile readAndCheckGltfFile(const std::filesystem::path& path, LoadContext& ctx) {

@@ -13,7 +13,7 @@ using namespace ::qlight::scene;  // glTF I/O reads and writes the scene's plain
 
 // Extensions read: KHR_lights_punctual, KHR_materials_emissive_strength,
 // KHR_materials_specular (specularFactor only), KHR_texture_transform, KHR_materials_unlit,
-// KHR_materials_transmission (thin-walled), KHR_materials_ior,
+// KHR_materials_transmission, KHR_materials_ior, KHR_materials_volume (thickness only),
 // EXT_mesh_gpu_instancing; these may be in extensionsRequired.
 //
 // Loads the file into a SceneAsset. Throws std::runtime_error with one line,

@@ -125,6 +125,17 @@ float iorOf(const tinygltf::Material& material, const std::string& owner, LoadCo
   return float(ior);
 }
 
+// KHR_materials_volume: a thickness above 0 makes the mesh a solid; attenuation is not
+// modelled (a warning when it would tint).
+bool volumeOf(const tinygltf::Material& material, const std::string& owner, LoadContext& ctx) {
+  auto it = material.extensions.find("KHR_materials_volume");
+  if (it == material.extensions.end() || !it->second.IsObject()) return false;
+  const tinygltf::Value& v = it->second;
+  if (v.Has("attenuationDistance") || v.Has("attenuationColor"))
+    ctx.warn(owner + " KHR_materials_volume attenuation is ignored");
+  return numberOr(v, "thicknessFactor", 0.0, owner, ctx) > 0.0;
+}
+
 AlphaMode alphaModeOf(const std::string& mode, const std::string& owner, LoadContext& ctx) {
   if (mode == "MASK") return AlphaMode::Mask;
   if (mode == "BLEND") return AlphaMode::Blend;
@@ -225,6 +236,7 @@ void convertMaterials(const tinygltf::Model& model, SceneAsset& scene, LoadConte
     out.unlit = m.extensions.count("KHR_materials_unlit") > 0;
     out.transmissionFactor = transmissionOf(m, owner, ctx);
     out.ior = iorOf(m, owner, ctx);
+    out.volume = volumeOf(m, owner, ctx);
     scene.materials.push_back(out);
   }
 }

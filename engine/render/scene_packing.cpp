@@ -36,6 +36,7 @@ shared::GpuMaterial packMaterial(const scene::MaterialAsset& m) {
   if (m.unlit) flags |= shared::kMaterialUnlit;
   if (m.alphaMode == scene::AlphaMode::Mask) flags |= shared::kMaterialAlphaMask;
   if (m.alphaMode == scene::AlphaMode::Blend) flags |= shared::kMaterialAlphaBlend;
+  if (m.volume) flags |= shared::kMaterialVolume;
   g.alphaCutoff = m.alphaCutoff;
   g.transmission = m.transmissionFactor;
   g.ior = m.ior;

@@ -100,6 +100,9 @@ struct MaterialAsset {
   // transmission; KHR_materials_ior: the dielectric's index of refraction (its F0).
   float transmissionFactor = 0.0f;
   float ior = 1.5f;
+  // KHR_materials_volume with a thickness: the mesh is a solid the transmission refracts
+  // into (its attenuation is not modelled); without it, a thin wall.
+  bool volume = false;
   // KHR_materials_specular specularFactor: weight of the dielectric specular layer. 0 with
   // metallic 0 makes an exactly Lambertian surface (the generated scenes use it).
   float specularFactor = 1.0f;

@@ -268,6 +268,11 @@ BsdfParams surfaceBsdf(Surface s) {
   p.specular = clamp(m.specular, 0.0, 1.0);
   p.transmission = clamp(m.transmission, 0.0, 1.0);
   p.ior = m.ior;
+  // A solid refracts: entering through the front face, leaving through the back. At ior 1
+  // nothing bends: the thin wall's straight-through lobe is the same light.
+  bool solid = (uint(m.flags) & kMaterialVolume) != 0u && p.transmission > 0.0 &&
+               abs(m.ior - 1.0) > 1e-3;
+  p.eta = solid ? (s.frontFace ? m.ior : 1.0 / m.ior) : 0.0;
   return p;
 }
 

@@ -50,6 +50,9 @@ struct BsdfParams {
   float specular;
   float transmission;
   float ior;
+  // 0: thin-walled transmission; else refraction (KHR_materials_volume) with this relative
+  // index, wi's side over wo's: ior entering the solid, 1 / ior leaving it.
+  float eta;
 };
 
 QL_FN float dielectricF0(BsdfParams p) {
@@ -73,17 +76,29 @@ QL_FN float fresnelSchlickScalar(float f0, float cosTheta) {
   return f0 + (1.0f - f0) * schlickWeight(cosTheta);
 }
 
+// The dielectric layer's Schlick Fresnel at the micro-normal cosine cosOm. Seen from
+// inside a solid (eta < 1) it is taken at the transmitted angle, and is 1 beyond the
+// critical angle (total internal reflection).
+QL_FN float dielectricFresnel(BsdfParams p, float cosOm) {
+  if (p.eta > 0.0f && p.eta < 1.0f) {
+    float sin2t = (1.0f - cosOm * cosOm) / (p.eta * p.eta);
+    if (sin2t >= 1.0f) return 1.0f;
+    cosOm = sqrt(1.0f - sin2t);
+  }
+  return fresnelSchlickScalar(dielectricF0(p), cosOm);
+}
+
 // Fresnel of the whole specular layer: the dielectric part weighted by
 // `specular`, the metal part by metallic.
 QL_FN vec3 specularFresnel(BsdfParams p, float cosTheta) {
-  vec3 dielectric = vec3(p.specular * fresnelSchlickScalar(dielectricF0(p), cosTheta));
+  vec3 dielectric = vec3(p.specular * dielectricFresnel(p, cosTheta));
   return mix(dielectric, fresnelSchlick(p.baseColor, cosTheta), p.metallic);
 }
 
 // What the dielectric specular layer leaves to the diffuse base, at the
 // half vector's cosine wo.h.
 QL_FN float diffuseTransmission(BsdfParams p, float cosOm) {
-  return 1.0f - p.specular * fresnelSchlickScalar(dielectricF0(p), cosOm);
+  return 1.0f - p.specular * dielectricFresnel(p, cosOm);
 }
 
 // The mean of (1 - wo.h)^5 over cosine-distributed wi, as a function of
@@ -193,9 +208,53 @@ QL_FN vec3 bsdfEvalTransmission(BsdfParams p, vec3 wo, vec3 wi) {
   return p.baseColor * (through * ggxD(m, alpha) * ggxVisibility(wo, w, alpha));
 }
 
+// Smith Lambda of one direction, either side.
+QL_FN float ggxLambda(vec3 w, float alpha) {
+  return 0.5f * (ggxLambdaTerm(w, alpha) / abs(w.z) - 1.0f);
+}
+
+// The micro-normal that refracts wo into wi (Walter et al. 2007), on wo's side; zero when
+// wi cannot be a refraction of wo (the same side of the micro-surface).
+QL_FN vec3 refractionHalfVector(vec3 wo, vec3 wi, float eta) {
+  vec3 h = -(wo + eta * wi);
+  float len2 = dot(h, h);
+  if (!(len2 > 0.0f)) return vec3(0.0f);
+  h *= inversesqrt(len2);
+  if (h.z < 0.0f) h = -h;
+  if (dot(wo, h) <= 0.0f || dot(wi, h) >= 0.0f) return vec3(0.0f);
+  return h;
+}
+
+// Refraction into or out of a solid (wi.z < 0), Walter et al. 2007 for radiance:
+// |wi.h| |wo.h| / (|wi.z| wo.z) (1 - s F) D(h) G2 / (eta wi.h + wo.h)^2, tinted by the base
+// colour, for the transmitted share of the dielectric base.
+QL_FN vec3 bsdfEvalRefraction(BsdfParams p, vec3 wo, vec3 wi) {
+  if (wo.z <= 0.0f || wi.z >= 0.0f || p.transmission <= 0.0f) return vec3(0.0f);
+  vec3 h = refractionHalfVector(wo, wi, p.eta);
+  if (h.z <= 0.0f) return vec3(0.0f);
+  float alpha = ggxAlpha(p.roughness);
+  float oh = dot(wo, h), ih = dot(wi, h);
+  float denom = p.eta * ih + oh;
+  float g2 = 1.0f / (1.0f + ggxLambda(wo, alpha) + ggxLambda(wi, alpha));
+  float value = abs(ih) * oh / (wo.z * abs(wi.z)) * diffuseTransmission(p, oh) * ggxD(h, alpha) *
+                g2 / (denom * denom);
+  return p.baseColor * ((1.0f - p.metallic) * p.transmission * value);
+}
+
+// Solid-angle density of wi = refract(wo, m) with m from sampleGgxVisibleNormal.
+QL_FN float ggxVndfRefractionPdf(vec3 wo, vec3 wi, float eta, float alpha) {
+  vec3 h = refractionHalfVector(wo, wi, eta);
+  if (wo.z <= 0.0f || h.z <= 0.0f) return 0.0f;
+  float oh = dot(wo, h), ih = dot(wi, h);
+  float denom = eta * ih + oh;
+  float visibleNormals = 2.0f * oh * ggxD(h, alpha) / (wo.z + ggxLambdaTerm(wo, alpha));
+  return visibleNormals * eta * eta * abs(ih) / (denom * denom);
+}
+
 // f(wo, wi) without the cosine; below the surface only the transmission.
 QL_FN vec3 bsdfEval(BsdfParams p, vec3 wo, vec3 wi) {
-  if (wi.z < 0.0f) return bsdfEvalTransmission(p, wo, wi);
+  if (wi.z < 0.0f)
+    return p.eta > 0.0f ? bsdfEvalRefraction(p, wo, wi) : bsdfEvalTransmission(p, wo, wi);
   return bsdfEvalDiffuse(p, wo, wi) + bsdfEvalSpecular(p, wo, wi);
 }
 
@@ -245,7 +304,9 @@ QL_FN float bsdfPdf(BsdfParams p, vec3 wo, vec3 wi) {
   BsdfLobes l = bsdfLobeProbabilities(p, wo);
   float alpha = ggxAlpha(p.roughness);
   if (wi.z < 0.0f)
-    return l.transmission * ggxVndfReflectionPdf(wo, mirrorThroughSurface(wi), alpha);
+    return l.transmission * (p.eta > 0.0f
+                                 ? ggxVndfRefractionPdf(wo, wi, p.eta, alpha)
+                                 : ggxVndfReflectionPdf(wo, mirrorThroughSurface(wi), alpha));
   return l.specular * ggxVndfReflectionPdf(wo, wi, alpha) + l.diffuse * cosineHemispherePdf(wi.z);
 }
 
@@ -259,13 +320,21 @@ QL_FN bool bsdfSample(BsdfParams p, vec3 wo, vec3 u, QL_OUT(vec3) wi, QL_OUT(flo
   bool transmitted = false;
   if (u.z < l.specular + l.transmission) {
     vec3 m = sampleGgxVisibleNormal(wo, alpha, vec2(u.x, u.y));
-    wi = reflectAbout(wo, m);
-    if (wi.z <= 0.0f) {
-      pdf = 0.0f;
-      return false;
-    }
     transmitted = u.z >= l.specular;
-    if (transmitted) wi = mirrorThroughSurface(wi);
+    if (transmitted && p.eta > 0.0f) {
+      wi = refract(-wo, m, 1.0f / p.eta);  // zero under total internal reflection
+      if (!(wi.z < 0.0f)) {
+        pdf = 0.0f;
+        return false;
+      }
+    } else {
+      wi = reflectAbout(wo, m);
+      if (wi.z <= 0.0f) {
+        pdf = 0.0f;
+        return false;
+      }
+      if (transmitted) wi = mirrorThroughSurface(wi);
+    }
   } else {
     wi = sampleCosineHemisphere(vec2(u.x, u.y));
   }

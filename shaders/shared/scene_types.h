@@ -66,6 +66,8 @@ QL_CONST uint kMaterialUnlit = 2u;  // KHR_materials_unlit: emits its base colou
 // transparency: present with probability alpha), for every ray, shadow rays included.
 QL_CONST uint kMaterialAlphaMask = 4u;
 QL_CONST uint kMaterialAlphaBlend = 8u;
+// KHR_materials_volume: transmission refracts into and out of a solid (else thin-walled).
+QL_CONST uint kMaterialVolume = 16u;
 
 // How a material reads one texture (KHR_texture_transform as a 2x3 matrix):
 // uv' = (a u + b v + offsetU, c u + d v + offsetV) on UV set texCoord.

@@ -405,5 +405,43 @@ TEST_F(MaterialFeatures, AThinGlassPaneTransmitsTheSky) {
   }
 }
 
+// KHR_materials_volume: a solid block of clear glass (ior 1.5, smooth) under the uniform
+// sky. Every interface passes 1 - F and reflects F, so nothing is lost: the radiance is the
+// sky's, 1, in every pixel, through the block (refracted, internally reflected) as around
+// it. Light that refraction lost or the 1 / eta^2 radiance scaling got wrong would show.
+TEST_F(MaterialFeatures, ASolidGlassBlockInAFurnaceVanishes) {
+  for (bool guided : {false, true}) {
+    scene::SceneAsset s;
+    scene::MaterialAsset glass;
+    glass.metallicFactor = 0.0f;
+    glass.roughnessFactor = 0.0f;
+    glass.transmissionFactor = 1.0f;
+    glass.volume = true;
+    s.materials.push_back(glass);
+    scene::MeshAsset mesh;
+    scene::addBox(mesh, glm::mat4(1.0f), glm::vec3(1.0f, 0.6f, 0.8f), 0);
+    scene::addMeshAtOrigin(s, mesh);
+    scene::addCameraNode(
+        s, 0.6f, {1.5f, 1.2f, 3.5f},
+        glm::quatLookAt(glm::normalize(glm::vec3(-1.5f, -1.2f, -3.5f)), {0, 1, 0}));
+    scene::refreshBounds(s);
+    render::RenderSettings settings = smallSettings(16, 16, 19);
+    settings.maxDepth = 64;
+    settings.russianRoulette = true;
+    settings.samplesPerFrame = 4;
+    guiding::GuidingSettings g;
+    g.enabled = guided;
+    auto out = session::renderScene(ctx(), s, settings, 64, 0.0f, g);
+    EXPECT_EQ(out.stats.counters.invalidSamples, 0u);
+    std::vector<double> values;
+    for (size_t k = 0; k < out.image.rgba.size(); k += 4) values.push_back(out.image.rgba[k + 1]);
+    const Moments m = moments(values);
+    // 5 standard errors plus 1% for the GGX lobe at the roughness floor.
+    EXPECT_NEAR(m.mean, 1.0, 5.0 * m.standardError() + 0.01)
+        << (guided ? "guided, " : "") << "standard error " << m.standardError();
+    EXPECT_LT(5.0 * m.standardError(), 0.03);
+  }
+}
+
 }  // namespace
 }  // namespace qlight::test
