@@ -343,3 +343,44 @@ TEST(GltfBadInput, BadCameraAndLightValues) {
 
 }  // namespace
 }  // namespace qlight::gltf
+
+namespace qlight::gltf {
+namespace {
+
+// Material extensions with values of the wrong type: one line naming the material, the
+// extension and the key.
+TEST(GltfBadInput, MalformedMaterialExtensionsAreOneLineErrors) {
+  TempDir dir;
+  auto withMaterial = [](json material) {
+    json doc = testing::triangleDoc();
+    doc["textures"] = json::array({json::object()});  // no image: white, with a warning
+    doc["materials"] = json::array({material});
+    doc["meshes"][0]["primitives"][0]["material"] = 0;
+    return doc;
+  };
+  auto transformed = [&](json transform) {
+    return withMaterial(
+        {{"pbrMetallicRoughness",
+          {{"baseColorTexture",
+            {{"index", 0}, {"extensions", {{"KHR_texture_transform", transform}}}}}}}});
+  };
+  expectLoadError(writeDoc(dir, "offset.gltf", transformed({{"offset", "abc"}})),
+                  "material 0 baseColorTexture KHR_texture_transform offset needs 2 numbers");
+  expectLoadError(writeDoc(dir, "scale.gltf", transformed({{"scale", {1}}})),
+                  "KHR_texture_transform scale needs 2 numbers");
+  expectLoadError(writeDoc(dir, "rotation.gltf", transformed({{"rotation", "half"}})),
+                  "KHR_texture_transform rotation is not a number");
+  expectLoadError(
+      writeDoc(dir, "transmission.gltf",
+               withMaterial({{"extensions",
+                              {{"KHR_materials_transmission", {{"transmissionFactor", "x"}}}}}})),
+      "material 0 transmissionFactor is not a number");
+  // An ior below 1 is a documented fallback (1.5, with a warning), not an error.
+  const SceneAsset scene = loadGltf(writeDoc(
+      dir, "ior.gltf", withMaterial({{"extensions", {{"KHR_materials_ior", {{"ior", 0.5}}}}}})));
+  EXPECT_FLOAT_EQ(scene.materials[0].ior, 1.5f);
+  EXPECT_FALSE(scene.warnings.empty());
+}
+
+}  // namespace
+}  // namespace qlight::gltf
