@@ -49,7 +49,8 @@ void BM_Traversal(benchmark::State& state) {
   session::SceneWorld world(asset, float(width) / height);
   render::GpuScene scene(*f.ctx, asset);
   scene.update(world.draw());
-  gpu::ComputePipeline pipeline(*f.ctx, "trace_bench");
+  // Specialized like the path passes: no alpha-test or texture code in opaque scenes.
+  gpu::ComputePipeline pipeline(*f.ctx, "trace_bench", scene.specializationFeatures());
   gpu::Buffer uniforms(*f.ctx, sizeof(shared::FrameUniforms), "uniforms");
   gpu::Buffer stats(*f.ctx, 64, "stats");
   shared::FrameUniforms u{};

@@ -18,23 +18,20 @@ std::vector<glm::vec3> toVec3(const std::vector<float>& f) {
   return out;
 }
 
-std::vector<glm::vec3> readVec3Attribute(const tinygltf::Model& model, int accessor,
-                                         size_t vertexCount, const std::string& use,
-                                         LoadContext& ctx) {
-  std::vector<glm::vec3> values = toVec3(readFloatAccessor(model, accessor, {3, false}, use, ctx));
-  if (vertexCount != 0 && values.size() != vertexCount)
-    ctx.fail(use + " has " + std::to_string(values.size()) + " elements but POSITION has " +
-             std::to_string(vertexCount));
-  return values;
-}
-
+// The accessor's floats, checked to hold vertexCount elements (0: any count, for POSITION).
 std::vector<float> readSized(const tinygltf::Model& model, int accessor, FloatAccessorRule rule,
                              size_t vertexCount, const std::string& use, LoadContext& ctx) {
   std::vector<float> values = readFloatAccessor(model, accessor, rule, use, ctx);
-  if (values.size() / size_t(rule.components) != vertexCount)
+  if (vertexCount != 0 && values.size() / size_t(rule.components) != vertexCount)
     ctx.fail(use + " has " + std::to_string(values.size() / size_t(rule.components)) +
              " elements but POSITION has " + std::to_string(vertexCount));
   return values;
+}
+
+std::vector<glm::vec3> readVec3Attribute(const tinygltf::Model& model, int accessor,
+                                         size_t vertexCount, const std::string& use,
+                                         LoadContext& ctx) {
+  return toVec3(readSized(model, accessor, {3, false}, vertexCount, use, ctx));
 }
 
 std::vector<glm::vec2> readUvAttribute(const tinygltf::Model& model, int accessor,

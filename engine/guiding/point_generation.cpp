@@ -36,7 +36,7 @@ PointRadii choosePointRadii(const GuidingSettings& s, float surfaceArea) {
 }
 
 PointGenerator::PointGenerator(const gpu::Context& ctx)
-    : ctx_(ctx), darts_(ctx, "guiding_darts"), spawn_(ctx, kSpawnBytes, "guiding.spawn") {
+    : ctx_(ctx), darts_(ctx), spawn_(ctx, kSpawnBytes, "guiding.spawn") {
   clearSpawnReports(ctx, spawn_);
 }
 
@@ -62,7 +62,8 @@ void PointGenerator::throwDarts(ecs::Registry& registry, const render::GpuScene&
     ctx_.submitAndWait([&](VkCommandBuffer cmd) {
       gpu::PassRecorder rec(ctx_, cmd);
       rec.fill("guiding.darts.clear", *candidates_, 0xffffffffu);  // NaN: slot unused
-      auto pass = rec.pass("guiding.darts", darts_);
+      auto pass =
+          rec.pass("guiding.darts", darts_.get("guiding_darts", scene.specializationFeatures()));
       scene.bind(pass);
       pass.write(QL_BIND_DART_CANDIDATES, *candidates_).push(push).dispatchThreads(push.pathCount);
       rec.finish();

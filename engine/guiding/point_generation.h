@@ -11,6 +11,7 @@
 #include "engine/guiding/guiding_settings.h"
 #include "engine/guiding/point_acceptance.h"
 #include "engine/render/gpu_scene.h"
+#include "engine/render/pipeline_variants.h"
 
 namespace qlight::guiding {
 
@@ -44,7 +45,7 @@ class PointGenerator {
 
  private:
   const gpu::Context& ctx_;
-  gpu::ComputePipeline darts_;
+  render::PipelineVariants darts_;  // guiding_darts, specialized on the scene
   gpu::Buffer spawn_;
   std::unique_ptr<gpu::Buffer> candidates_;
   std::unique_ptr<PointAcceptor> acceptor_;

@@ -359,13 +359,6 @@ uint64_t GpuScene::memoryBytes() const {
   return bytes;
 }
 
-uint32_t featureKey(const std::vector<uint32_t>& features) {
-  uint32_t key = 0;
-  for (uint32_t id = shared::kSpecUseTextures; id < features.size(); ++id)
-    key |= (features[id] != 0 ? 1u : 0u) << (id - shared::kSpecUseTextures);
-  return key;
-}
-
 std::vector<uint32_t> GpuScene::specializationFeatures() const {
   std::vector<uint32_t> features(shared::kSpecPathFeatureCount, 0);
   features[shared::kSpecUseTextures] = hasTextures();

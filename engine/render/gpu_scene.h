@@ -21,9 +21,6 @@ struct SceneLightingOptions {
   float fallbackSkyRadiance = 1.0f;
 };
 
-// One bit per feature of a specialization vector: the key of a pipeline variant.
-uint32_t featureKey(const std::vector<uint32_t>& features);
-
 class GpuScene {
  public:
   GpuScene(const gpu::Context& ctx, const scene::SceneAsset& asset,

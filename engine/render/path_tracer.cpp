@@ -26,6 +26,7 @@ FrameCounters& FrameCounters::operator+=(const FrameCounters& o) {
 PathTracer::PathTracer(const gpu::Context& ctx, const RenderSettings& settings)
     : ctx_(ctx),
       begin_(ctx, "pt_begin"),
+      variants_(ctx),
       queue_(ctx, "pt_queue"),
       queueState_(ctx, 2 * sizeof(shared::QueueState), "path.queues",
                   VK_BUFFER_USAGE_INDIRECT_BUFFER_BIT),
@@ -97,9 +98,7 @@ const gpu::ComputePipeline& PathTracer::specialized(const char* shader, const Gp
   std::vector<uint32_t> features = scene.specializationFeatures();
   features[shared::kSpecUseGuiding] = guide.points;
   features[shared::kSpecUseLightLearning] = guide.lightLearning;
-  auto& slot = variants_[{shader, featureKey(features)}];
-  if (!slot) slot = std::make_unique<gpu::ComputePipeline>(ctx_, shader, features);
-  return *slot;
+  return variants_.get(shader, features);
 }
 
 void PathTracer::setTemporalBlend(float k) {

@@ -15,6 +15,7 @@
 #include "engine/image/image_io.h"
 #include "engine/render/gpu_scene.h"
 #include "engine/render/guide.h"
+#include "engine/render/pipeline_variants.h"
 #include "engine/render/render_settings.h"
 #include "shaders/shared/scene_types.h"
 
@@ -70,7 +71,7 @@ class PathTracer {
   // non-triangle lights), keyed by shader and feature bits.
   const gpu::ComputePipeline& specialized(const char* shader, const GpuScene& scene,
                                           const GuideFeatures& guide);
-  std::map<std::pair<std::string, uint32_t>, std::unique_ptr<gpu::ComputePipeline>> variants_;
+  PipelineVariants variants_;
   std::unique_ptr<gpu::Buffer> paths_;
   std::unique_ptr<gpu::BufferView> pathsView_;
   std::unique_ptr<gpu::Buffer> queueIds_[2];

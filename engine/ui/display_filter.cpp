@@ -7,6 +7,7 @@ namespace qlight::ui {
 
 DisplayFilter::DisplayFilter(const gpu::Context& ctx)
     : ctx_(ctx),
+      gbufferPipelines_(ctx),
       temporal_(ctx, "temporal_reuse"),
       atrous_(ctx, "atrous"),
       uniforms_(ctx, sizeof(shared::FilterUniforms), "filter.uniforms",
@@ -52,10 +53,8 @@ void DisplayFilter::record(gpu::PassRecorder& rec, const render::GpuScene& scene
   uniforms_.upload(ctx_, &u, sizeof(u));
 
   // Specialized on the scene like the path passes: traversal's alpha test, textures.
-  const std::vector<uint32_t> features = scene.specializationFeatures();
-  auto& gbuffer = gbufferVariants_[render::featureKey(features)];
-  if (!gbuffer) gbuffer = std::make_unique<gpu::ComputePipeline>(ctx_, "gbuffer", features);
-  gpu::PassBuilder gb = rec.pass("filter.gbuffer", *gbuffer);
+  gpu::PassBuilder gb =
+      rec.pass("filter.gbuffer", gbufferPipelines_.get("gbuffer", scene.specializationFeatures()));
   scene.bindSurfaces(gb);
   gb.read(QL_FILTER_BIND_UNIFORMS, uniforms_)
       .write(QL_FILTER_BIND_GBUFFER, *gbuffers_[now])

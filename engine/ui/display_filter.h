@@ -15,6 +15,7 @@
 #include "engine/gpu/pass_recorder.h"
 #include "engine/image/image_io.h"
 #include "engine/render/gpu_scene.h"
+#include "engine/render/pipeline_variants.h"
 #include "engine/render/scene_draw.h"
 
 namespace qlight::ui {
@@ -47,7 +48,7 @@ class DisplayFilter {
   void resize(uint32_t width, uint32_t height);
 
   const gpu::Context& ctx_;
-  std::map<uint32_t, std::unique_ptr<gpu::ComputePipeline>> gbufferVariants_;
+  render::PipelineVariants gbufferPipelines_;  // the G-buffer pass, per scene features
   gpu::ComputePipeline temporal_, atrous_;
   gpu::Buffer uniforms_;
   // Ping-pong pairs: this frame's and the last frame's (index current_).

@@ -93,14 +93,14 @@ TEST(DemoPathCli, WritesAnMp4OfTheFramesWithFfmpeg) {
   const fs::path dir = tempDir("demo_mp4");
   const fs::path path = writeFile(dir / "path.json", stillThenMovedPath());
   fs::create_directories(dir / "bin");
-  const fs::path stub = writeFile(dir / "bin" / "ffmpeg",
-                                  "#!/bin/sh\n"
-                                  "echo \"$@\" > \"" +
-                                      (dir / "ffmpeg_args.txt").string() +
-                                      "\"\n"
-                                      "for last; do :; done\n"
-                                      "echo mp4 > \"$last\"\n");
-  fs::permissions(stub, fs::perms::owner_all);
+  const fs::path standInFfmpeg = writeFile(dir / "bin" / "ffmpeg",
+                                           "#!/bin/sh\n"
+                                           "echo \"$@\" > \"" +
+                                               (dir / "ffmpeg_args.txt").string() +
+                                               "\"\n"
+                                               "for last; do :; done\n"
+                                               "echo mp4 > \"$last\"\n");
+  fs::permissions(standInFfmpeg, fs::perms::owner_all);
   const RunResult r = runCommand("PATH=" + (dir / "bin").string() + ":$PATH QLIGHT_VALIDATION=1 " +
                                  std::string(QLIGHT_BINARY) + " " + demoAlong(path, dir / "out"));
   ASSERT_EQ(r.exitCode, 0) << r.output;
