@@ -58,6 +58,12 @@ void addGuidingOptions(CLI::App& app, guiding::GuidingSettings& g, GuidingCli& c
       ->transform(
           CLI::CheckedTransformer(Words<bool>{{"q", true}, {"off", false}}, CLI::ignore_case));
   app.add_option("--strata", cli.strata, "hemisphere strata RxC, e.g. 8x8 or 16x8");
+  app.add_option("--directions", g.directions,
+                 "tree (a quadtree per point that refines where Q is) or strata (D&K's RxC)")
+      ->transform(CLI::CheckedTransformer(directionModelWords(), CLI::ignore_case));
+  app.add_option("--tree-nodes", g.treeNodes, "direction tree: nodes per point (5..128)");
+  app.add_option("--tree-split", g.treeSplitShare,
+                 "direction tree: a leaf with more than this share of its point's Q splits");
   app.add_option("--alpha-min", g.alphaMin, "learning rate floor (keeps tracking moving lights)");
   app.add_option("--alpha-max", g.alphaMax, "learning rate ceiling");
   app.add_option("--half-life", g.halfLifeFrames,

@@ -32,6 +32,12 @@ inline const Words<guiding::PointSet>& pointSetWords() {
   return words;
 }
 
+inline const Words<guiding::DirectionModel>& directionModelWords() {
+  static const Words<guiding::DirectionModel> w{{"tree", guiding::DirectionModel::Tree},
+                                                {"strata", guiding::DirectionModel::Strata}};
+  return w;
+}
+
 inline const Words<guiding::LearningTarget>& learningTargetWords() {
   static const Words<guiding::LearningTarget> words{{"returns", guiding::LearningTarget::Returns},
                                                     {"td", guiding::LearningTarget::TdStep}};

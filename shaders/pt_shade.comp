@@ -182,18 +182,18 @@ ScatterMix scatterMix(uint point, Vertex v, Switches sw) {
 }
 
 // The density with which the mixture produces direction wi, whichever
-// technique did: MIS and the throughput need it. k is wi's stratum at the
-// point, pointLocal wi in the point's frame.
-float mixturePdfInStratum(ScatterMix m, Vertex v, vec3 wiLocal, uint k, vec3 pointLocal) {
+// technique did: MIS and the throughput need it. g is wi's guided lookup at the point.
+float mixturePdfOf(ScatterMix m, Vertex v, vec3 wiLocal, GuidedLookup g) {
   float pdf = (1.0 - m.guideShare) * bsdfPdf(v.bsdf, v.wo, wiLocal);
-  if (m.guideShare > 0.0) pdf += m.guideShare * guidedPdfOfStratum(m.row, k, pointLocal.z);
+  if (m.guideShare > 0.0) pdf += m.guideShare * g.pdf;
   return pdf;
 }
 
 float mixturePdf(ScatterMix m, Vertex v, vec3 wiLocal, vec3 wiWorld) {
-  vec3 pointLocal = localFromWorld(m.row.frame, wiWorld);
-  uint k = m.guideShare > 0.0 ? stratumOfDirection(pointLocal, guiding.rows, guiding.cols) : 0u;
-  return mixturePdfInStratum(m, v, wiLocal, k, pointLocal);
+  GuidedLookup g;
+  g.pdf = 0.0;
+  if (m.guideShare > 0.0) g = guidedLookup(m.row, localFromWorld(m.row.frame, wiWorld));
+  return mixturePdfOf(m, v, wiLocal, g);
 }
 
 // A direction the vertex can scatter into: above both the shading and the
@@ -256,11 +256,13 @@ bool sampleScatter(inout PathState st, inout Rng rng, Vertex v, ScatterMix m, Ra
                    bool learn) {
   vec3 wiWorld = vec3(0.0);
   vec3 pointLocal = vec3(0.0);  // wi in the point's frame
-  uint k;                       // and its stratum: each found once, for the pdf and the Q entry
+  GuidedLookup g;               // and its entry and guided pdf: found once, for the pdf and learning
+  g.entry = kNoCachePoint;
+  g.pdf = 0.0;
   bool sampled;
   if (rngNextFloat(rng) < m.guideShare) {
-    k = sampleGuidedStratum(m.row, rngNext3(rng), pointLocal);
-    sampled = pointLocal.z > 0.0;
+    g = sampleGuidedDirection(m.row, rngNext3(rng), pointLocal);
+    sampled = pointLocal.z > 0.0 && g.pdf > 0.0;
     wiWorld = worldFromLocal(m.row.frame, pointLocal);
   } else {
     vec3 local;
@@ -268,21 +270,19 @@ bool sampleScatter(inout PathState st, inout Rng rng, Vertex v, ScatterMix m, Ra
     sampled = bsdfSample(v.bsdf, v.wo, rngNext3(rng), local, bsdfPdfValue);
     wiWorld = worldFromLocal(v.tf, local);
     pointLocal = localFromWorld(m.row.frame, wiWorld);
-    k = m.point != kNoCachePoint ? stratumOfDirection(pointLocal, guiding.rows, guiding.cols) : 0u;
+    if (m.point != kNoCachePoint && (m.guideShare > 0.0 || learn)) g = guidedLookup(m.row, pointLocal);
   }
   vec3 wiLocal = localFromWorld(v.tf, wiWorld);
   float pdf = 0.0;
   // Directions between the shading and the geometric surface are lost.
-  if (sampled && scatterable(v, wiLocal, wiWorld))
-    pdf = mixturePdfInStratum(m, v, wiLocal, k, pointLocal);
+  if (sampled && scatterable(v, wiLocal, wiWorld)) pdf = mixturePdfOf(m, v, wiLocal, g);
   bool moved = pdf > 0.0;
   if (moved) {
     st.throughput *= bsdfEval(v.bsdf, v.wo, wiLocal) * (abs(wiLocal.z) / pdf);
     st.prevScatterPdf = pdf;
     st.prevPoint = m.point;
     // The Q entry this direction updates once the next vertex is known.
-    st.prevEntry = learn && m.point != kNoCachePoint && pointLocal.z > 0.0 ? m.row.base + k
-                                                                           : kNoCachePoint;
+    st.prevEntry = learn && m.point != kNoCachePoint && pointLocal.z > 0.0 ? g.entry : kNoCachePoint;
     // The ray cone after the bounce: its width here, spread by the lobe (a diffuse bounce
     // blurs what the next hit reads from its textures, a glossy one by its roughness).
     st.coneWidth += st.coneSpread * st.hitT * length(st.dir);

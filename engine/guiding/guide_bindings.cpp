@@ -10,6 +10,7 @@ void bindGuideBuffers(gpu::PassBuilder& pass, const GuideBuffers& b) {
       .read(QL_BIND_GRID_BUCKETS, *b.gridBuckets)
       .read(QL_BIND_GRID_POINTS, *b.gridPoints)
       .read(QL_BIND_Q_CDF, *b.qCdf)
+      .read(QL_BIND_Q_CHILDREN, *b.qChildren)
       .write(QL_BIND_Q_SUM, *b.qSums)
       .write(QL_BIND_Q_COUNT, *b.qCounts)
       .write(QL_BIND_SPAWN, *b.spawnReports)

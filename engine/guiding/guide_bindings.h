@@ -12,6 +12,7 @@ struct GuideBuffers {
   const gpu::BufferView* gridBuckets = nullptr;
   const gpu::BufferView* gridPoints = nullptr;
   const gpu::BufferView* qCdf = nullptr;
+  const gpu::BufferView* qChildren = nullptr;  // direction trees (a placeholder with strata)
   const gpu::Buffer* qSums = nullptr;
   const gpu::Buffer* qCounts = nullptr;
   const gpu::Buffer* spawnReports = nullptr;

@@ -23,7 +23,7 @@ std::vector<PointSummary> summarizePoints(ecs::Registry& registry, const QGuide&
 struct PointDetail {
   CachePoint point;
   uint32_t rows = 0, cols = 0;
-  std::vector<float> q;            // rows x cols, row-major (rows: equal cos theta zones)
+  std::vector<float> q;  // rows x cols, row-major (rows: equal cos theta zones; trees: at centres)
   std::vector<float> lightValues;  // V per light (empty without light learning)
   float confidence = 0;
 };

@@ -4,6 +4,7 @@
 #include <cmath>
 #include <stdexcept>
 
+#include "shaders/shared/direction_tree.h"
 #include "shaders/shared/strata.h"
 
 namespace qlight::guiding {
@@ -13,6 +14,14 @@ void validate(const GuidingSettings& s) {
   if (s.rows == 0 || s.cols == 0 || s.strata() > shared::kMaxStrata)
     throw std::invalid_argument("strata must be RxC with 1 <= R*C <= " +
                                 std::to_string(shared::kMaxStrata));
+  if (s.treeNodes < 5 || s.treeNodes > shared::kTreeMaxNodes)
+    throw std::invalid_argument("tree nodes must be 5.." + std::to_string(shared::kTreeMaxNodes));
+  if (!finite(s.treeSplitShare) || s.treeSplitShare <= 0 || s.treeSplitShare >= 1)
+    throw std::invalid_argument("tree split share must be in (0, 1)");
+  if (s.treeMaxDepth < 1 || s.treeMaxDepth > shared::kTreeMaxDepth)
+    throw std::invalid_argument("tree depth must be 1.." + std::to_string(shared::kTreeMaxDepth));
+  if (s.treeSplitVisits > (1u << 20))
+    throw std::invalid_argument("tree split visits must be 0..1048576");
   if (!finite(s.alphaMin) || !finite(s.alphaMax) || s.alphaMin <= 0 || s.alphaMax > 1 ||
       s.alphaMin > s.alphaMax)
     throw std::invalid_argument(

@@ -16,10 +16,24 @@ enum class LearningTarget : uint32_t {
   TdStep,   // D&K's one-step target: emission at the next vertex + what its Q says it scatters
 };
 
+// How a point's Q resolves directions (issue 9, docs/guiding_log.md).
+enum class DirectionModel : uint32_t {
+  Tree,    // a quadtree per point that refines where Q is (shaders/shared/direction_tree.h)
+  Strata,  // D&K's fixed rows x cols strata of equal solid angle
+};
+
 struct GuidingSettings {
-  bool enabled = true;  // --guiding q|off
-  uint32_t rows = 8;    // strata: rows x cols, equal solid angle
-  uint32_t cols = 8;
+  bool enabled = true;                                 // --guiding q|off
+  DirectionModel directions = DirectionModel::Strata;  // --directions (tree: being measured)
+  uint32_t rows = 8;  // strata: rows x cols, equal solid angle (trees: the nominal resolution
+  uint32_t cols = 8;  // of the confidence, rows x cols leaves' worth of updates)
+  // Trees: nodes per point, the share of a point's weight above which a leaf splits (once it
+  // has had treeSplitVisits visits), and the deepest level (root = 1). With 0.02 a uniform Q
+  // stops at 64 leaves (21 nodes), leaving the rest for where the light comes from.
+  uint32_t treeNodes = 64;
+  float treeSplitShare = 0.02f;
+  uint32_t treeSplitVisits = 8;
+  uint32_t treeMaxDepth = 8;
   float alphaMin = 1e-4f;  // learning rate clamp(1/(1+visits), min, max), vM's bounds
   // 1: Q is the running mean of its targets from the first one. Returns are unbiased, so
   // there is nothing to wait out (van Mastrigt's 0.05 suits bootstrapped TD targets; with
@@ -60,6 +74,10 @@ struct GuidingSettings {
   uint32_t seed = 1;
 
   uint32_t strata() const { return rows * cols; }
+  // Q entries per point: strata, or a tree's 4 slots a node.
+  uint32_t entriesPerPoint() const {
+    return directions == DirectionModel::Tree ? 4 * treeNodes : strata();
+  }
 };
 
 // The point budget: the setting, or for 0 one point per kPathsPerPoint paths traced per

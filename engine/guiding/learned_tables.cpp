@@ -4,6 +4,7 @@
 #include <cmath>
 #include <cstring>
 #include <stdexcept>
+#include <vector>
 
 #include "shaders/shared/guiding_types.h"
 
@@ -32,7 +33,7 @@ std::unique_ptr<gpu::Buffer> makeTableBuffer(const gpu::Context& ctx, uint64_t b
 }  // namespace
 
 void LearnedTable::allocate(const gpu::Context& ctx, uint64_t slots, uint32_t length,
-                            const std::string& name) {
+                            const std::string& name, bool tree) {
   rowLength = length;
   const uint64_t entries = std::max<uint64_t>(slots * length, 1);
   // The 64-bit sums are the largest buffer of a table.
@@ -40,13 +41,21 @@ void LearnedTable::allocate(const gpu::Context& ctx, uint64_t slots, uint32_t le
                             std::to_string(length) + " entries; lower --points or --strata)",
                         entries * 8, true, entries);
   cdfView.reset();
+  childrenView.reset();
+  children.reset();
   values = makeTableBuffer(ctx, entries * 4, name + ".values");
   visits = makeTableBuffer(ctx, entries * 4, name + ".visits");
   cdf = makeTableBuffer(ctx, entries * 4, name + ".cdf");
   sums = makeTableBuffer(ctx, entries * 8, name + ".sums");  // 64-bit fixed point per entry
   counts = makeTableBuffer(ctx, entries * 4, name + ".counts");
   rowClocks = makeTableBuffer(ctx, std::max<uint64_t>(slots, 1) * 4, name + ".rowClocks");
-  cdfView = std::make_unique<gpu::BufferView>(ctx, *cdf, VK_FORMAT_R32_SFLOAT);
+  if (tree) {
+    children = makeTableBuffer(ctx, entries * 4, name + ".children");
+    cdfView = std::make_unique<gpu::BufferView>(ctx, *cdf, VK_FORMAT_R32G32B32A32_SFLOAT);
+    childrenView = std::make_unique<gpu::BufferView>(ctx, *children, VK_FORMAT_R32G32B32A32_UINT);
+  } else {
+    cdfView = std::make_unique<gpu::BufferView>(ctx, *cdf, VK_FORMAT_R32_SFLOAT);
+  }
 }
 
 void LearnedTable::recordReset(gpu::PassRecorder& rec, float initial, uint64_t first,
@@ -65,25 +74,33 @@ void LearnedTable::recordReset(gpu::PassRecorder& rec, float initial, uint64_t f
   fill(*sums, 0, 8);
   fill(*counts, 0, 4);
   fill(*cdf, 0, 4);
+  if (children) fill(*children, 0, 4);  // every tree back to a root of 4 leaves
   // A reset row has nothing to age, so its clock only needs a defined start.
   if (whole) rec.fill("guiding.reset", *rowClocks, 0);
 }
 
 uint64_t LearnedTable::memoryBytes() const {
   return values->size() + visits->size() + cdf->size() + sums->size() + counts->size() +
-         rowClocks->size();
+         rowClocks->size() + (children ? children->size() : 0);
 }
 
 uint64_t LearnedTables::memoryBytes() const {
   return q_.memoryBytes() + v_.memoryBytes() + pointUpdates_->size();
 }
 
-LearnedTables::LearnedTables(const gpu::Context& ctx) : ctx_(ctx), update_(ctx, "q_update") {}
+LearnedTables::LearnedTables(const gpu::Context& ctx)
+    : ctx_(ctx), update_(ctx, "q_update"), treeUpdate_(ctx, "q_tree_update") {
+  placeholderChildren_ = makeTableBuffer(ctx_, 16, "guiding.q.noChildren");
+  placeholderChildren_->upload(ctx_, std::vector<uint32_t>(4, 0).data(), 16);
+  placeholderChildrenView_ =
+      std::make_unique<gpu::BufferView>(ctx_, *placeholderChildren_, VK_FORMAT_R32G32B32A32_UINT);
+}
 
-void LearnedTables::allocate(uint32_t slots, uint32_t strata, uint32_t lights) {
+void LearnedTables::allocate(uint32_t slots, const GuidingSettings& settings, uint32_t lights) {
   slots_ = slots;
   lights_ = lights;
-  q_.allocate(ctx_, slots, strata, "guiding.q");
+  q_.allocate(ctx_, slots, settings.entriesPerPoint(), "guiding.q",
+              settings.directions == DirectionModel::Tree);
   v_.allocate(ctx_, slots, lights, "guiding.v");
   if (!pointUpdates_ || pointUpdates_->size() < std::max<uint64_t>(uint64_t(slots) * 4, 16)) {
     pointUpdatesView_.reset();
@@ -124,6 +141,32 @@ void LearnedTables::recordUpdate(gpu::PassRecorder& rec, const char* name,
                                  const LearnedTable& table, uint32_t rows, bool cosineWeights,
                                  bool everyRow, const GuidingSettings& settings) {
   if (rows == 0 || table.rowLength == 0) return;
+  const uint32_t groups = (rows + QL_Q_UPDATE_GROUP_SIZE - 1) / QL_Q_UPDATE_GROUP_SIZE;
+  if (table.tree()) {
+    shared::TreeUpdatePush push{};
+    push.rowCount = rows;
+    push.nodes = table.rowLength / 4;
+    push.alphaMin = settings.alphaMin;
+    push.alphaMax = settings.alphaMax;
+    push.floorValue = settings.qFloor;
+    push.everyRow = everyRow ? 1u : 0u;
+    push.clock = float(clock_);
+    push.splitShare = settings.treeSplitShare;
+    push.splitVisits = settings.treeSplitVisits;
+    push.maxDepth = settings.treeMaxDepth;
+    rec.pass(name, treeUpdate_)
+        .write(QL_Q_UPDATE_BIND_VALUES, *table.values)
+        .write(QL_Q_UPDATE_BIND_VISITS, *table.visits)
+        .write(QL_Q_UPDATE_BIND_CDF, *table.cdf)
+        .write(QL_Q_UPDATE_BIND_SUMS, *table.sums)
+        .write(QL_Q_UPDATE_BIND_COUNTS, *table.counts)
+        .write(QL_Q_UPDATE_BIND_POINT_UPDATES, *pointUpdates_)
+        .write(QL_Q_UPDATE_BIND_ROW_CLOCKS, *table.rowClocks)
+        .write(QL_Q_UPDATE_BIND_CHILDREN, *table.children)
+        .push(push)
+        .dispatch(std::min(groups, kMaxGroupsX), (groups + kMaxGroupsX - 1) / kMaxGroupsX);
+    return;
+  }
   shared::TableUpdatePush push{};
   push.rowCount = rows;
   push.segmentLength = table.rowLength;
@@ -135,7 +178,6 @@ void LearnedTables::recordUpdate(gpu::PassRecorder& rec, const char* name,
   push.floorValue = settings.qFloor;
   push.everyRow = everyRow ? 1u : 0u;
   push.clock = float(clock_);
-  const uint32_t groups = (rows + QL_Q_UPDATE_GROUP_SIZE - 1) / QL_Q_UPDATE_GROUP_SIZE;
   rec.pass(name, update_)
       .write(QL_Q_UPDATE_BIND_VALUES, *table.values)
       .write(QL_Q_UPDATE_BIND_VISITS, *table.visits)
@@ -200,6 +242,24 @@ std::vector<float> readRow(const gpu::Context& ctx, const LearnedTable& table, u
 
 std::vector<float> LearnedTables::readQ(uint32_t slot) const {
   return readRow(ctx_, q_, slot, slots_);
+}
+
+LearnedTables::TreeRow LearnedTables::readTree(uint32_t slot) const {
+  if (!q_.tree()) throw std::logic_error("readTree: Q is not a direction tree");
+  if (slot >= slots_) throw std::out_of_range("no cache point slot " + std::to_string(slot));
+  TreeRow row;
+  const uint64_t n = q_.rowLength, offset = uint64_t(slot) * n * 4;
+  row.weights.resize(n);
+  row.children.resize(n);
+  q_.cdf->download(ctx_, row.weights.data(), n * 4, offset);
+  q_.children->download(ctx_, row.children.data(), n * 4, offset);
+  return row;
+}
+
+std::vector<float> LearnedTables::readAllWeights() const {
+  std::vector<float> w(uint64_t(slots_) * q_.rowLength);
+  if (!w.empty()) q_.cdf->download(ctx_, w.data(), w.size() * 4, 0);
+  return w;
 }
 
 std::vector<float> LearnedTables::readV(uint32_t slot) const {

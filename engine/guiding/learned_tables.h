@@ -20,12 +20,18 @@ namespace qlight::guiding {
 // One learned table (Q over strata, or V over lights) and its frame accumulators.
 struct LearnedTable {
   std::unique_ptr<gpu::Buffer> values, visits, cdf, sums, counts;
+  // Direction trees only (Q with DirectionModel::Tree): each slot's child node, 0 for a leaf;
+  // cdf then holds the slots' sampling weights.
+  std::unique_ptr<gpu::Buffer> children;
+  std::unique_ptr<gpu::BufferView> childrenView;  // a node's 4 slots a texel
   std::unique_ptr<gpu::Buffer> rowClocks;    // per row: the forgetting clock at its last update
   std::unique_ptr<gpu::BufferView> cdfView;  // the path passes read the CDF as a texel buffer
   uint32_t rowLength = 0;                    // entries per slot
 
+  // tree: the rows are direction trees (4 slots a node; the views read a node a texel).
   void allocate(const gpu::Context& ctx, uint64_t slots, uint32_t rowLength,
-                const std::string& name);
+                const std::string& name, bool tree = false);
+  bool tree() const { return children != nullptr; }
   // Fills the rows [first, first + count) with `initial` values and no visits or targets.
   void recordReset(gpu::PassRecorder& rec, float initial, uint64_t first, uint64_t count) const;
   uint64_t memoryBytes() const;
@@ -35,8 +41,9 @@ class LearnedTables {
  public:
   explicit LearnedTables(const gpu::Context& ctx);
 
-  // Fresh buffers for `slots` rows of `strata` Q entries and `lights` V entries (0: no V).
-  void allocate(uint32_t slots, uint32_t strata, uint32_t lights);
+  // Fresh buffers for `slots` rows of Q entries (settings.entriesPerPoint(): strata or a
+  // direction tree) and `lights` V entries (0: no V).
+  void allocate(uint32_t slots, const GuidingSettings& settings, uint32_t lights);
   // Every row back to the start (uniform Q, V at the floor), with valid CDFs: points
   // added later start from a valid distribution without a learning pass of their own.
   void reset(const GuidingSettings& settings);
@@ -61,8 +68,21 @@ class LearnedTables {
   const LearnedTable& v() const { return v_; }
   // Read by the path passes as a texel buffer (the confidence of each point).
   const gpu::BufferView& pointUpdatesView() const { return *pointUpdatesView_; }
-  // Q of one slot (strata values), for tests and the UI.
+  // The tree children the path passes bind: the Q table's, or a placeholder with strata.
+  const gpu::BufferView& childrenView() const {
+    return q_.tree() ? *q_.childrenView : *placeholderChildrenView_;
+  }
+  // Q of one slot (strata values; for trees every slot's Q, inner ones stale), for tests and
+  // the UI.
   std::vector<float> readQ(uint32_t slot) const;
+  // A slot's direction tree: its slots' sampling weights and children (trees only).
+  struct TreeRow {
+    std::vector<float> weights;
+    std::vector<uint32_t> children;
+  };
+  TreeRow readTree(uint32_t slot) const;
+  // Every slot's sampling weights (strata: the CDFs; trees: the slots' weights).
+  std::vector<float> readAllWeights() const;
   // The light values V of one slot (empty without light learning), for the UI.
   std::vector<float> readV(uint32_t slot) const;
   // Every slot's Q and update count (the UI's overlay of all points).
@@ -83,10 +103,12 @@ class LearnedTables {
                     const GuidingSettings& settings);
 
   const gpu::Context& ctx_;
-  gpu::ComputePipeline update_;
+  gpu::ComputePipeline update_, treeUpdate_;
   LearnedTable q_, v_;
   std::unique_ptr<gpu::Buffer> pointUpdates_;
   std::unique_ptr<gpu::BufferView> pointUpdatesView_;
+  std::unique_ptr<gpu::Buffer> placeholderChildren_;
+  std::unique_ptr<gpu::BufferView> placeholderChildrenView_;
   uint32_t slots_ = 0, lights_ = 0;
   uint32_t learningPasses_ = 0;  // for the light-value update interval
   // The forgetting clock, in halvings: a row's counts are aged by the clock's advance since

@@ -18,6 +18,7 @@ NullGuide::NullGuide(const gpu::Context& ctx) {
   emptyFloats_ = std::make_unique<gpu::BufferView>(ctx, *empty_, VK_FORMAT_R32_SFLOAT);
   emptyVec4s_ = std::make_unique<gpu::BufferView>(ctx, *empty_, VK_FORMAT_R32G32B32A32_SFLOAT);
   emptyUints_ = std::make_unique<gpu::BufferView>(ctx, *empty_, VK_FORMAT_R32_UINT);
+  emptyUvec4s_ = std::make_unique<gpu::BufferView>(ctx, *empty_, VK_FORMAT_R32G32B32A32_UINT);
   // Written bindings get their own buffers so no two bindings of one pass alias.
   for (int i = 0; i < 5; ++i) {
     writable_.push_back(
@@ -32,6 +33,7 @@ void NullGuide::bind(gpu::PassBuilder& pass) const {
   b.points = emptyVec4s_.get();
   b.gridBuckets = b.gridPoints = emptyUints_.get();
   b.qCdf = b.vCdf = emptyFloats_.get();
+  b.qChildren = emptyUvec4s_.get();
   b.qSums = writable_[0].get();
   b.qCounts = writable_[1].get();
   b.spawnReports = writable_[2].get();

@@ -16,7 +16,7 @@ class NullGuide final : public render::Guide {
 
  private:
   std::unique_ptr<gpu::Buffer> uniforms_, empty_;
-  std::unique_ptr<gpu::BufferView> emptyFloats_, emptyVec4s_, emptyUints_;
+  std::unique_ptr<gpu::BufferView> emptyFloats_, emptyVec4s_, emptyUints_, emptyUvec4s_;
   std::vector<std::unique_ptr<gpu::Buffer>> writable_;
 };
 

@@ -37,7 +37,7 @@ QGuide::QGuide(const gpu::Context& ctx, const GuidingSettings& settings)
     throw std::invalid_argument("QGuide needs a resolved point budget");
   // Bindable before the first generatePoints: an empty set and tables, everything off.
   points_ = std::make_unique<CachePointSet>(ctx_, settings_.pointBudget, 0.0f);
-  tables_.allocate(settings_.pointBudget, settings_.strata(), 0);
+  tables_.allocate(settings_.pointBudget, settings_, 0);
   writeUniforms();
 }
 
@@ -52,11 +52,12 @@ void QGuide::setSettings(const GuidingSettings& s) {
                        s.dartBounces != old.dartBounces || s.seed != old.seed ||
                        s.lightLearning != old.lightLearning;
   bool tablesChanged = s.rows != old.rows || s.cols != old.cols || s.initialQ != old.initialQ ||
-                       s.qFloor != old.qFloor;
+                       s.qFloor != old.qFloor || s.directions != old.directions ||
+                       s.treeNodes != old.treeNodes;
   if (pointsChanged) {
     needsPoints_ = true;
   } else if (tablesChanged) {
-    tables_.allocate(points_->budget(), settings_.strata(), tables_.lights());
+    tables_.allocate(points_->budget(), settings_, tables_.lights());
     tables_.reset(settings_);
   }
   writeUniforms();
@@ -68,7 +69,7 @@ void QGuide::generatePoints(ecs::Registry& registry, const render::GpuScene& sce
   spawned_ = 0;
   radii_ = choosePointRadii(settings_, scene.surfaceArea());
   points_ = std::make_unique<CachePointSet>(ctx_, settings_.pointBudget, radii_.searchRadius);
-  tables_.allocate(settings_.pointBudget, settings_.strata(), lights);
+  tables_.allocate(settings_.pointBudget, settings_, lights);
   generator_.throwDarts(registry, scene, settings_, radii_, settings_.seed + 7919u * ++generation_,
                         *points_);
   needsPoints_ = false;
@@ -102,6 +103,8 @@ void QGuide::writeUniforms() {
   if (on) u.flags |= shared::kGuideSample;
   if (on && settings_.learn) u.flags |= shared::kGuideLearn;
   if (settings_.target == LearningTarget::Returns) u.flags |= shared::kGuideLearnReturns;
+  if (settings_.directions == DirectionModel::Tree) u.flags |= shared::kGuideTree;
+  u.treeNodes = settings_.treeNodes;
   if (on && tables_.lights() > 0) u.flags |= shared::kGuideLightLearn;
   if (settings_.enabled && settings_.spawnFromCamera && count < settings_.pointBudget &&
       generator_.spawning())
@@ -128,6 +131,7 @@ void QGuide::bind(gpu::PassBuilder& pass) const {
   b.gridBuckets = &points_->gridBucketsView();
   b.gridPoints = &points_->gridPointsView();
   b.qCdf = tables_.q().cdfView.get();
+  b.qChildren = &tables_.childrenView();
   b.qSums = tables_.q().sums.get();
   b.qCounts = tables_.q().counts.get();
   b.spawnReports = &generator_.spawnReports();

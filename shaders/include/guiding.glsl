@@ -16,6 +16,9 @@ layout(binding = QL_BIND_V_CDF) uniform samplerBuffer uVCdf;
 layout(binding = QL_BIND_V_SUM, scalar) buffer VSum { uint vSum[]; };  // (lo, hi) pairs
 layout(binding = QL_BIND_V_COUNT, scalar) buffer VCount { uint vCount[]; };
 layout(binding = QL_BIND_POINT_UPDATES) uniform usamplerBuffer uPointUpdates;
+// Direction trees (kGuideTree): QL_BIND_Q_CDF holds the slots' weights (4 a texel, one texel a
+// node), this the slots' children.
+layout(binding = QL_BIND_Q_CHILDREN) uniform usamplerBuffer uQChildren;
 
 
 GpuCachePoint cachePointAt(uint i) {
@@ -34,7 +37,12 @@ float vCdf(uint i) { return texelFetch(uVCdf, int(i)).x; }
 #define QL_CDF_AT(i) qCdf(i)
 #include "shared/strata.h"
 
+#define QL_TREE_WEIGHTS(node) texelFetch(uQCdf, int(node))
+#define QL_TREE_CHILDREN(node) texelFetch(uQChildren, int(node))
+#include "shared/direction_tree.h"
+
 uint strataCount() { return guiding.rows * guiding.cols; }
+bool treeDirections() { return (guiding.flags & kGuideTree) != 0u; }
 
 float pointConfidence(uint point) {
   return confidenceOf(texelFetch(uPointUpdates, int(point)).x, guiding.confidenceUpdates,
@@ -55,8 +63,9 @@ uint findCachePoint(vec3 p, vec3 n) {
 
 TangentFrame pointFrame(uint point) { return frameFromNormal(cachePointAt(point).normal); }
 
-// A point's guided distribution as a vertex uses it: its frame, the first entry
-// of its row and the CDF's total, each read once per vertex.
+// A point's guided distribution as a vertex uses it: its frame, where its entries start
+// (strata: the first of its row; tree: its root node) and its total (strata: the CDF's,
+// sum Q_k cosInt_k; tree: the mean weight over the unit square), each read once per vertex.
 struct GuidedRow {
   TangentFrame frame;
   uint base;
@@ -66,46 +75,88 @@ struct GuidedRow {
 GuidedRow guidedRow(uint point) {
   GuidedRow r;
   r.frame = pointFrame(point);
-  r.base = point * strataCount();
-  r.total = qCdf(r.base + strataCount() - 1u);
+  if (treeDirections()) {
+    r.base = point * guiding.treeNodes;
+    vec4 w = texelFetch(uQCdf, int(r.base));
+    r.total = 0.25 * (w.x + w.y + w.z + w.w);
+  } else {
+    r.base = point * strataCount();
+    r.total = qCdf(r.base + strataCount() - 1u);
+  }
   return r;
 }
 
-// Density of a direction in stratum k with cos(theta) = cosTheta in the point's frame.
-float guidedPdfOfStratum(GuidedRow r, uint k, float cosTheta) {
-  if (cosTheta <= 0.0) return 0.0;
+// A direction at a point: the Q entry it updates and its guided density. Found once per
+// direction, for the mixture's pdf and for learning.
+struct GuidedLookup {
+  uint entry;
+  float pdf;
+};
+
+GuidedLookup guidedLookup(GuidedRow r, vec3 local) {
+  GuidedLookup g;
+  if (treeDirections()) {
+    float pdfU;
+    g.entry = treeLeafOf(r.base, treeCoordsOfDirection(local), pdfU);
+    g.pdf = treeSolidAnglePdf(pdfU, local.z);
+  } else {
+    uint k = stratumOfDirection(local, guiding.rows, guiding.cols);
+    g.entry = r.base + k;
+    float below = k > 0u ? qCdf(r.base + k - 1u) : 0.0;
+    g.pdf = local.z > 0.0 ? guidedPdfInStratum((qCdf(r.base + k) - below) / r.total, k, local.z,
+                                               guiding.rows, guiding.cols)
+                          : 0.0;
+  }
+  return g;
+}
+
+// A direction drawn from the point's learned distribution (local: in the point's frame).
+GuidedLookup sampleGuidedDirection(GuidedRow r, vec3 u, out vec3 local) {
+  GuidedLookup g;
+  if (treeDirections()) {
+    vec2 coords;
+    float pdfU;
+    g.entry = sampleTree(r.base, u, coords, pdfU);
+    local = directionOfTreeCoords(coords);
+    g.pdf = treeSolidAnglePdf(pdfU, local.z);
+  } else {
+    uint k = sampleCdfTarget(r.base, strataCount(), u.z * r.total);
+    local = sampleStratumCosine(k, u.xy, guiding.rows, guiding.cols);
+    g.entry = r.base + k;
+    float below = k > 0u ? qCdf(r.base + k - 1u) : 0.0;
+    g.pdf = guidedPdfInStratum((qCdf(r.base + k) - below) / r.total, k, local.z, guiding.rows,
+                               guiding.cols);
+  }
+  return g;
+}
+
+// Q in a direction at a point (strata: its stratum's, recovered from the CDF of
+// Q_k cosInt_k; tree: its leaf's sampling weight).
+float storedQ(GuidedRow r, vec3 local) {
+  if (treeDirections()) {
+    float pdfU;
+    treeLeafOf(r.base, treeCoordsOfDirection(local), pdfU);
+    return pdfU * r.total;
+  }
+  uint k = stratumOfDirection(local, guiding.rows, guiding.cols);
   float below = k > 0u ? qCdf(r.base + k - 1u) : 0.0;
-  return guidedPdfInStratum((qCdf(r.base + k) - below) / r.total, k, cosTheta, guiding.rows,
-                            guiding.cols);
+  return (qCdf(r.base + k) - below) / stratumCosineIntegral(k, guiding.rows, guiding.cols);
 }
 
-// A stratum drawn from the row's CDF and a cosine-distributed direction in it (local).
-uint sampleGuidedStratum(GuidedRow r, vec3 u, out vec3 local) {
-  uint k = sampleCdfTarget(r.base, strataCount(), u.z * r.total);
-  local = sampleStratumCosine(k, u.xy, guiding.rows, guiding.cols);
-  return k;
-}
-
-// Q of one stratum, recovered from the CDF of Q_k cosInt_k.
-float storedQ(uint point, uint k) {
-  uint base = point * strataCount();
-  float below = k > 0u ? qCdf(base + k - 1u) : 0.0;
-  return (qCdf(base + k) - below) / stratumCosineIntegral(k, guiding.rows, guiding.cols);
-}
+// int Q cos(theta) dw over the hemisphere: the irradiance the point's Q describes.
+float guidedIrradiance(GuidedRow r) { return treeDirections() ? kPi * r.total : r.total; }
 
 // Radiance the vertex scatters toward wo, estimated from Q at its point: the
-// diffuse lobe integrates Q against albedo/pi exactly per stratum (the CDF's
-// total is sum Q_k cosInt_k); the specular lobe takes Q from the mirror direction.
+// diffuse lobe integrates Q against albedo/pi exactly (per stratum or leaf); the
+// specular lobe takes Q from the mirror direction.
 float scatteredEstimate(uint point, BsdfParams bsdf, vec3 woLocal, vec3 woWorld, vec3 shadingNormal) {
-  uint n = strataCount();
-  float total = qCdf(point * n + n - 1u);
-  float estimate = luminance(bsdfDiffuseAlbedo(bsdf, woLocal.z)) * kInvPi * total;
+  GuidedRow r = guidedRow(point);
+  float estimate = luminance(bsdfDiffuseAlbedo(bsdf, woLocal.z)) * kInvPi * guidedIrradiance(r);
   vec3 fresnel = specularFresnel(bsdf, woLocal.z);
   if (fresnel != vec3(0.0)) {
     vec3 mirror = reflect(-woWorld, shadingNormal);
-    vec3 local = localFromWorld(pointFrame(point), mirror);
-    if (local.z > 0.0)
-      estimate += luminance(fresnel) * storedQ(point, stratumOfDirection(local, guiding.rows, guiding.cols));
+    vec3 local = localFromWorld(r.frame, mirror);
+    if (local.z > 0.0) estimate += luminance(fresnel) * storedQ(r, local);
   }
   return estimate;
 }

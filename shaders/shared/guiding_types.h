@@ -27,6 +27,8 @@ QL_CONST uint kGuideSpawn = 8u;       // report camera hits with no cache point 
 // Learn Q from the radiance each vertex's direction actually received (NEE
 // included) once the path is done, instead of D&K's one-step TD target.
 QL_CONST uint kGuideLearnReturns = 16u;
+// Directions as a quadtree per point (shared/direction_tree.h) instead of rows x cols strata.
+QL_CONST uint kGuideTree = 32u;
 
 struct GuidingUniforms {
   uint rows;  // strata rows (equal-height zones in cos theta)
@@ -47,8 +49,10 @@ struct GuidingUniforms {
   // Updates per stratum a point needs before it guides at the full share: a
   // point with fewer updates has an unreliable Q and samples mostly by the BSDF.
   float confidenceUpdates;
+  uint treeNodes;  // nodes per point (kGuideTree)
+  uint pad0, pad1, pad2;
 };
-QL_CHECK_SIZE(GuidingUniforms, 64);
+QL_CHECK_SIZE(GuidingUniforms, 80);
 
 QL_CONST uint kNoCachePoint = 0xffffffffu;
 
@@ -70,6 +74,7 @@ QL_FN uint gridCellHash(ivec3 c, uint hashSize) {
 #define QL_Q_UPDATE_BIND_COUNTS 4
 #define QL_Q_UPDATE_BIND_POINT_UPDATES 5
 #define QL_Q_UPDATE_BIND_ROW_CLOCKS 6  // the forgetting clock at each row's last update
+#define QL_Q_UPDATE_BIND_CHILDREN 7    // the direction tree's child slots (q_tree_update.comp)
 #define QL_Q_UPDATE_GROUP_SIZE 64
 
 struct TableUpdatePush {
@@ -87,6 +92,23 @@ struct TableUpdatePush {
   uint pad0, pad1;
 };
 QL_CHECK_SIZE(TableUpdatePush, 48);
+
+// Push constants of q_tree_update.comp: the learning pass of direction trees, one thread
+// per point (its CDF is the slots' sampling weights).
+struct TreeUpdatePush {
+  uint rowCount;  // points
+  uint nodes;     // nodes per point
+  float alphaMin;
+  float alphaMax;
+  float floorValue;
+  uint everyRow;     // 1: also the points without targets (after a reset)
+  float clock;       // as TableUpdatePush
+  float splitShare;  // a leaf with more of its point's weight than this splits
+  uint splitVisits;  // ... once it has had this many visits
+  uint maxDepth;     // node levels, root included
+  uint pad0, pad1;
+};
+QL_CHECK_SIZE(TreeUpdatePush, 48);
 
 // Push constants of guiding_darts.comp: light paths whose hits are candidate
 // points (written to QL_BIND_DART_CANDIDATES).
