@@ -142,6 +142,15 @@ void LearnedTables::recordUpdate(gpu::PassRecorder& rec, const char* name,
                                  bool everyRow, const GuidingSettings& settings) {
   if (rows == 0 || table.rowLength == 0) return;
   const uint32_t groups = (rows + QL_Q_UPDATE_GROUP_SIZE - 1) / QL_Q_UPDATE_GROUP_SIZE;
+  // Both passes share the table's bindings; trees add their children and their own push.
+  gpu::PassBuilder pass = rec.pass(name, table.tree() ? treeUpdate_ : update_);
+  pass.write(QL_Q_UPDATE_BIND_VALUES, *table.values)
+      .write(QL_Q_UPDATE_BIND_VISITS, *table.visits)
+      .write(QL_Q_UPDATE_BIND_CDF, *table.cdf)
+      .write(QL_Q_UPDATE_BIND_SUMS, *table.sums)
+      .write(QL_Q_UPDATE_BIND_COUNTS, *table.counts)
+      .write(QL_Q_UPDATE_BIND_POINT_UPDATES, *pointUpdates_)
+      .write(QL_Q_UPDATE_BIND_ROW_CLOCKS, *table.rowClocks);
   if (table.tree()) {
     shared::TreeUpdatePush push{};
     push.rowCount = rows;
@@ -154,40 +163,22 @@ void LearnedTables::recordUpdate(gpu::PassRecorder& rec, const char* name,
     push.splitShare = settings.treeSplitShare;
     push.splitVisits = settings.treeSplitVisits;
     push.maxDepth = settings.treeMaxDepth;
-    rec.pass(name, treeUpdate_)
-        .write(QL_Q_UPDATE_BIND_VALUES, *table.values)
-        .write(QL_Q_UPDATE_BIND_VISITS, *table.visits)
-        .write(QL_Q_UPDATE_BIND_CDF, *table.cdf)
-        .write(QL_Q_UPDATE_BIND_SUMS, *table.sums)
-        .write(QL_Q_UPDATE_BIND_COUNTS, *table.counts)
-        .write(QL_Q_UPDATE_BIND_POINT_UPDATES, *pointUpdates_)
-        .write(QL_Q_UPDATE_BIND_ROW_CLOCKS, *table.rowClocks)
-        .write(QL_Q_UPDATE_BIND_CHILDREN, *table.children)
-        .push(push)
-        .dispatch(std::min(groups, kMaxGroupsX), (groups + kMaxGroupsX - 1) / kMaxGroupsX);
-    return;
+    pass.write(QL_Q_UPDATE_BIND_CHILDREN, *table.children).push(push);
+  } else {
+    shared::TableUpdatePush push{};
+    push.rowCount = rows;
+    push.segmentLength = table.rowLength;
+    push.rows = settings.rows;
+    push.cols = settings.cols;
+    push.cosineWeights = cosineWeights ? 1u : 0u;
+    push.alphaMin = settings.alphaMin;
+    push.alphaMax = settings.alphaMax;
+    push.floorValue = settings.qFloor;
+    push.everyRow = everyRow ? 1u : 0u;
+    push.clock = float(clock_);
+    pass.push(push);
   }
-  shared::TableUpdatePush push{};
-  push.rowCount = rows;
-  push.segmentLength = table.rowLength;
-  push.rows = settings.rows;
-  push.cols = settings.cols;
-  push.cosineWeights = cosineWeights ? 1u : 0u;
-  push.alphaMin = settings.alphaMin;
-  push.alphaMax = settings.alphaMax;
-  push.floorValue = settings.qFloor;
-  push.everyRow = everyRow ? 1u : 0u;
-  push.clock = float(clock_);
-  rec.pass(name, update_)
-      .write(QL_Q_UPDATE_BIND_VALUES, *table.values)
-      .write(QL_Q_UPDATE_BIND_VISITS, *table.visits)
-      .write(QL_Q_UPDATE_BIND_CDF, *table.cdf)
-      .write(QL_Q_UPDATE_BIND_SUMS, *table.sums)
-      .write(QL_Q_UPDATE_BIND_COUNTS, *table.counts)
-      .write(QL_Q_UPDATE_BIND_POINT_UPDATES, *pointUpdates_)
-      .write(QL_Q_UPDATE_BIND_ROW_CLOCKS, *table.rowClocks)
-      .push(push)
-      .dispatch(std::min(groups, kMaxGroupsX), (groups + kMaxGroupsX - 1) / kMaxGroupsX);
+  pass.dispatch(std::min(groups, kMaxGroupsX), (groups + kMaxGroupsX - 1) / kMaxGroupsX);
 }
 
 void LearnedTables::recordLearning(gpu::PassRecorder& rec, uint32_t rows,

@@ -93,6 +93,16 @@ struct GuidedLookup {
   float pdf;
 };
 
+// Stratum k's entry, and the density of a direction in it with cos(theta) = cosTheta.
+GuidedLookup stratumLookup(GuidedRow r, uint k, float cosTheta) {
+  GuidedLookup g;
+  g.entry = r.base + k;
+  float below = k > 0u ? qCdf(r.base + k - 1u) : 0.0;
+  g.pdf = guidedPdfInStratum((qCdf(r.base + k) - below) / r.total, k, cosTheta, guiding.rows,
+                             guiding.cols);
+  return g;
+}
+
 GuidedLookup guidedLookup(GuidedRow r, vec3 local) {
   GuidedLookup g;
   if (treeDirections()) {
@@ -100,12 +110,7 @@ GuidedLookup guidedLookup(GuidedRow r, vec3 local) {
     g.entry = treeLeafOf(r.base, treeCoordsOfDirection(local), pdfU);
     g.pdf = treeSolidAnglePdf(pdfU, local.z);
   } else {
-    uint k = stratumOfDirection(local, guiding.rows, guiding.cols);
-    g.entry = r.base + k;
-    float below = k > 0u ? qCdf(r.base + k - 1u) : 0.0;
-    g.pdf = local.z > 0.0 ? guidedPdfInStratum((qCdf(r.base + k) - below) / r.total, k, local.z,
-                                               guiding.rows, guiding.cols)
-                          : 0.0;
+    g = stratumLookup(r, stratumOfDirection(local, guiding.rows, guiding.cols), local.z);
   }
   return g;
 }
@@ -122,10 +127,7 @@ GuidedLookup sampleGuidedDirection(GuidedRow r, vec3 u, out vec3 local) {
   } else {
     uint k = sampleCdfTarget(r.base, strataCount(), u.z * r.total);
     local = sampleStratumCosine(k, u.xy, guiding.rows, guiding.cols);
-    g.entry = r.base + k;
-    float below = k > 0u ? qCdf(r.base + k - 1u) : 0.0;
-    g.pdf = guidedPdfInStratum((qCdf(r.base + k) - below) / r.total, k, local.z, guiding.rows,
-                               guiding.cols);
+    g = stratumLookup(r, k, local.z);
   }
   return g;
 }
