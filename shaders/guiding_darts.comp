@@ -55,8 +55,10 @@ void main() {
   } else if (l.type == kLightPoint || l.type == kLightSpot) {
     origin = l.position;
     dir = sampleUniformSphere(rngNext2(rng));
-  } else {  // directional or sky: enter the scene's bounding sphere through a disk
-    dir = l.type == kLightDirectional ? l.edge1 : -sampleUniformSphere(rngNext2(rng));
+  } else {  // directional or sky (from its tile): enter the scene's bounding sphere through a disk
+    if (l.type == kLightDirectional) dir = l.edge1;
+    else if (skyHasMap(l)) dir = -sampleEnvironmentTile(environmentMapHeader(), l.triangle, rngNext2(rng)).direction;
+    else dir = -sampleUniformSphere(rngNext2(rng));
     TangentFrame f = frameFromNormal(dir);
     vec2 disk = sampleConcentricDisk(rngNext2(rng)) * pc.sceneRadius;
     origin = pc.sceneCenter - 2.0 * pc.sceneRadius * dir + disk.x * f.tangent + disk.y * f.bitangent;

@@ -77,24 +77,24 @@ uint chooseLight(uint point, float u, out float selectPdf) {
 }
 
 // The ray left the scene: only the sky (environment map, uniform sky or the
-// fallback) lives at infinity, as the last light. Its luminance in the ray's
-// direction completes the previous vertex's Q update.
+// fallback) lives at infinity, as the last lights (one per tile of a map). Its
+// luminance in the ray's direction completes the previous vertex's Q update.
 void shadeEscaped(inout PathState st, Switches sw) {
   float skyLuminance = 0.0;
   uint last = frame.lightCount - 1u;
   if (kUseNonTriangleLights && frame.lightCount > 0u && lights[last].type == kLightSky) {
-    vec4 sky = skyRadianceAndPdf(lights[last], st.dir);
+    SkySeen sky = skySeenFrom(last, st.dir);
     float w = 1.0;
     if (pc.bounce > 0u) {  // camera rays see the sky unweighted
       if (!sw.emitterHits) w = 0.0;
       else if (sw.mis) {
-        float lightPdf = lightSelectionPdf(st.prevPoint, last) * sky.w;
+        float lightPdf = lightSelectionPdf(st.prevPoint, sky.light) * sky.pdf;
         w = powerHeuristic(1.0, st.prevScatterPdf, 1.0, lightPdf);
       }
       st.flags |= kPathEmitterHit;
     }
-    st.radiance += st.throughput * sky.xyz * w;
-    skyLuminance = luminance(sky.xyz);
+    st.radiance += st.throughput * sky.radiance * w;
+    skyLuminance = luminance(sky.radiance);
   }
   if (kUseGuiding && sw.learn && !sw.returns) recordQTarget(st.prevEntry, skyLuminance);
 }

@@ -10,7 +10,9 @@ namespace qlight::render {
 
 struct EnvironmentTables {
   std::vector<glm::vec4> texels;  // header, then (radiance, p_uv) per pixel
-  std::vector<float> cdf;         // conditional rows, then the marginal
+  std::vector<float> cdf;         // rows within tiles, then the tiles' marginals
+  // Per tile (ty * tilesX + tx): the integral of the map's luminance over its directions.
+  std::vector<double> tileLuminanceIntegrals;
   // Integral over the sphere of the map's luminance (unscaled): its power is this times the
   // scene's cross-section.
   double luminanceIntegral = 0.0;

@@ -98,9 +98,9 @@ void GpuScene::uploadEnvironment() {
                                "x" + std::to_string(env->height) + " texels; use a smaller map)",
                            texels * 16, false, texels);
     tables = buildEnvironmentTables(*env);
-    environmentLuminanceIntegral_ = tables.luminanceIntegral;
+    environmentTileIntegrals_ = tables.tileLuminanceIntegrals;
   } else {
-    tables.texels.assign(1, glm::vec4(0.0f));  // header only: width 0, never read
+    tables.texels.assign(shared::kEnvironmentHeaderTexels, glm::vec4(0.0f));  // never read
     tables.cdf.assign(1, 0.0f);
   }
   constexpr VkBufferUsageFlags texel = VK_BUFFER_USAGE_UNIFORM_TEXEL_BUFFER_BIT;
@@ -111,20 +111,31 @@ void GpuScene::uploadEnvironment() {
   envCdfView_ = std::make_unique<gpu::BufferView>(ctx_, *envCdf_, VK_FORMAT_R32_SFLOAT);
 }
 
-GpuLight GpuScene::skyLight(const scene::EnvironmentAsset& env) const {
+std::vector<GpuLight> GpuScene::skyLights(const scene::EnvironmentAsset& env) const {
   GpuLight sky{};
-  sky.type = shared::kLightSky;  // must be the last light (the shader looks there on a miss)
+  sky.type = shared::kLightSky;  // the sky's lights come last (the shader looks there on a miss)
   sky.emission = env.scale();
   // Selection weight: the power entering the scene's bounding sphere, pi r^2 times the
-  // luminance integrated over the sphere of directions (a uniform sky: 4 pi L).
-  double integral = 4.0 * kPi * luminance(sky.emission);
-  if (env.hasMap()) {
-    sky.flags = shared::kLightEnvironmentMap;
-    integral = environmentLuminanceIntegral_ * luminance(sky.emission);
+  // luminance integrated over the directions (a uniform sky: 4 pi L).
+  const double crossSection = kPi * double(radius_) * radius_ * luminance(sky.emission);
+  auto weight = [&](double integral) {
+    const float power = float(crossSection * integral);
+    return power > 0.0f && std::isfinite(power) ? power : 0.0f;
+  };
+  if (!env.hasMap()) {
+    sky.power = weight(4.0 * kPi);
+    return {sky};
   }
-  sky.power = float(kPi * double(radius_) * radius_ * integral);
-  if (!(sky.power > 0.0f) || !std::isfinite(sky.power)) sky.power = 0.0f;
-  return sky;
+  // A light per tile, `triangle` naming the tile; all of them, so that tile t is light
+  // first + t, even where a tile is black.
+  std::vector<GpuLight> tiles;
+  sky.flags = shared::kLightEnvironmentMap;
+  for (size_t t = 0; t < environmentTileIntegrals_.size(); ++t) {
+    sky.triangle = uint32_t(t);
+    sky.power = weight(environmentTileIntegrals_[t]);
+    tiles.push_back(sky);
+  }
+  return tiles;
 }
 
 void GpuScene::uploadStatic() {
@@ -244,17 +255,19 @@ void GpuScene::uploadLights(const SceneDraw& draw) {
   // light gets the fallback sky.
   const std::optional<scene::EnvironmentAsset>& env = asset_.environment;
   fallbackSky_ = !env && lights_.empty() && options_.fallbackSkyRadiance > 0.0f;
-  GpuLight sky{};
+  std::vector<GpuLight> sky;
   if (env) {
-    sky = skyLight(*env);
+    sky = skyLights(*env);
   } else if (fallbackSky_) {
     scene::EnvironmentAsset fallback;
     fallback.color = glm::vec3(options_.fallbackSkyRadiance);
-    sky = skyLight(fallback);
-    sky.power = 1.0f;  // the only light
+    sky = skyLights(fallback);
+    sky[0].power = 1.0f;  // the only light
   }
-  environmentLit_ = env && sky.power > 0.0f;
-  if (sky.power > 0.0f) lights_.push_back(sky);
+  float skyPower = 0.0f;
+  for (const GpuLight& l : sky) skyPower += l.power;
+  environmentLit_ = env && skyPower > 0.0f;
+  if (skyPower > 0.0f) lights_.insert(lights_.end(), sky.begin(), sky.end());
   lightCount_ = uint32_t(lights_.size());
   hasNonTriangleLights_ = std::any_of(lights_.begin(), lights_.end(), [](const GpuLight& l) {
     return l.type != shared::kLightTriangle;

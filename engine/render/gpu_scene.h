@@ -73,7 +73,8 @@ class GpuScene {
   void uploadEnvironment();
   void uploadLights(const SceneDraw& draw);
   // The sky light of the user's environment, or of the fallback; power 0 when black.
-  shared::GpuLight skyLight(const scene::EnvironmentAsset& env) const;
+  // The sky as lights: one per tile of a map (shaders/shared/environment.h), else one.
+  std::vector<shared::GpuLight> skyLights(const scene::EnvironmentAsset& env) const;
   bool applyDeformations(const std::vector<DeformedDraw>& deformed);
   // The mesh's positions as last posed (its file positions until it deforms).
   const std::vector<glm::vec3>& positionsOf(uint32_t mesh) const;
@@ -92,7 +93,7 @@ class GpuScene {
   uint32_t triangleCount_ = 0;
   bool fallbackSky_ = false;
   bool environmentLit_ = false;
-  double environmentLuminanceIntegral_ = 0.0;  // of the map (environment_tables.h)
+  std::vector<double> environmentTileIntegrals_;  // of the map's tiles (environment_tables.h)
   glm::vec3 center_{0.0f};
   float radius_ = 1.0f;
   float surfaceArea_ = 0.0f;

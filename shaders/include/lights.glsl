@@ -63,14 +63,28 @@ float triangleLightPdf(GpuLight l, float selectPdf, vec3 dir, float dist) {
 
 bool skyHasMap(GpuLight l) { return kUseEnvironmentMap && (l.flags & kLightEnvironmentMap) != 0u; }
 
-// Radiance from the sky light `l` in world direction `dir` (rgb) and the solid-angle pdf
-// of NEE sampling that direction, selection excluded (w).
-vec4 skyRadianceAndPdf(GpuLight l, vec3 dir) {
+struct SkySeen {
+  vec3 radiance;  // in the ray's direction
+  float pdf;      // solid-angle pdf of NEE sampling that direction given its light, selection excluded
+  uint light;     // the sky's light holding the direction (its tile's, with a map)
+};
+
+// The sky seen in world direction `dir`; `last` is the last light, a sky one.
+SkySeen skySeenFrom(uint last, vec3 dir) {
+  GpuLight l = lights[last];
+  SkySeen s;
   if (skyHasMap(l)) {
-    vec4 t = environmentLookup(environmentMapHeader(), dir);
-    return vec4(l.emission * t.xyz, t.w);
+    EnvironmentMap e = environmentMapHeader();
+    EnvironmentTexel t = environmentLookup(e, dir);
+    s.radiance = l.emission * t.radiance;
+    s.pdf = t.pdf;
+    s.light = last - (e.tilesX * e.tilesY - 1u) + t.tile;
+  } else {
+    s.radiance = l.emission;
+    s.pdf = uniformSpherePdf();
+    s.light = last;
   }
-  return vec4(l.emission, uniformSpherePdf());
+  return s;
 }
 
 // Samples a point or direction on light `index`, chosen with probability selectPdf.
@@ -122,7 +136,7 @@ LightSample sampleLight(vec3 x, vec2 u, uint index, float selectPdf) {
     s.delta = true;
   } else if (kUseNonTriangleLights) {  // sky
     if (skyHasMap(l)) {
-      EnvironmentSample e = sampleEnvironment(environmentMapHeader(), u);
+      EnvironmentSample e = sampleEnvironmentTile(environmentMapHeader(), l.triangle, u);
       s.direction = e.direction;
       s.radiance = l.emission * e.radiance;
       s.pdf = selectPdf * e.pdf;

@@ -9,19 +9,27 @@
 // a glTF camera looks by default) and +X is a quarter to the right of it.
 // The map is turned by `rotation` about +Y (right-handed): worldFromMap.
 //
-// Sampling is piecewise constant in (u, v) with pixel probabilities
-// proportional to luminance x sin(theta at the row's centre): a row from the
-// marginal CDF, a column from that row's conditional CDF, then uniform within
-// the pixel. Its density per solid angle is p_uv / (2 pi^2 sin(theta)).
+// The map is cut into tiles (Dahm & Keller section 4.2): a grid of tilesX x tilesY
+// rectangles in (u, v), tile (tx, ty) covering columns [tx w / tilesX, (tx+1) w / tilesX)
+// and rows [ty h / tilesY, ...) in integer division. Each tile is one light of the scene
+// (its selection weight the tile's power), so power-based and learned light selection
+// choose among tiles, and a cache point learns which tiles reach it.
+//
+// Sampling within a tile is piecewise constant in (u, v) with pixel probabilities
+// proportional to luminance x sin(theta at the row's centre): a row from the tile's
+// marginal CDF, a column from that row's CDF within the tile, then uniform within the
+// pixel. Its density per solid angle is p_uv / (2 pi^2 sin(theta)).
 //
 // Tables (built by engine/render/environment_tables.cpp):
-//   texels: texel 0 = (width, height, cos(rotation), sin(rotation)) as float
-//           values; texel 1 + row * width + col = (radiance rgb, p_uv), p_uv
-//           being the sampler's density in (u, v) of that pixel, computed
-//           from the same float CDF steps the sampler walks, so the pdf it
-//           states is the density it has;
-//   cdf:    row r's inclusive conditional CDF at r * width + col (ending at
-//           1), then the marginal CDF over rows at width * height + row.
+//   texels: texel 0 = (width, height, cos(rotation), sin(rotation)) and texel 1 =
+//           (tilesX, tilesY, 0, 0) as float values; texel 2 + row * width + col =
+//           (radiance rgb, p_uv), p_uv being the density in (u, v) of its tile's
+//           sampler, computed from the same float CDF steps the sampler walks, so the
+//           pdf it states is the density it has;
+//   cdf:    at row * width + col, the inclusive CDF of row `row` within the tile's
+//           columns (ending at 1 at the tile's last column); then at width * height +
+//           tx * height + row, the inclusive CDF over the rows of tile column tx within
+//           each tile's rows (ending at 1 at each tile's last row).
 // The includer defines QL_ENV_TEXEL_AT(i) (vec4) and QL_ENV_CDF_AT(i) (float)
 // before including this header to get the lookups and the sampler.
 #ifndef QLIGHT_SHARED_ENVIRONMENT_H
@@ -31,7 +39,10 @@
 
 QL_BEGIN
 
-QL_CONST uint kEnvironmentHeaderTexels = 1u;
+QL_CONST uint kEnvironmentHeaderTexels = 2u;
+// The tile grid, clamped to the map's size (8 x 4: 45 degrees a side).
+QL_CONST uint kEnvironmentTilesX = 8u;
+QL_CONST uint kEnvironmentTilesY = 4u;
 // Solid angle per unit area of (u, v) at theta = pi/2: d omega = 2 pi^2 sin(theta) du dv.
 QL_CONST float kEnvironmentUvToSolidAngle = 2.0f * kPi * kPi;
 
@@ -40,7 +51,17 @@ struct EnvironmentMap {
   uint height;
   float cosRotation;
   float sinRotation;
+  uint tilesX;
+  uint tilesY;
 };
+
+// First column (row) of tile column (row) t of `tiles` over `size` pixels.
+QL_FN uint environmentTileStart(uint t, uint tiles, uint size) { return t * size / tiles; }
+
+// The tile column (row) holding column (row) i: the largest t with start(t) <= i.
+QL_FN uint environmentTileAt(uint i, uint tiles, uint size) {
+  return ((i + 1u) * tiles - 1u) / size;
+}
 
 QL_FN vec3 environmentMapFromWorld(EnvironmentMap e, vec3 w) {
   return vec3(w.x * e.cosRotation - w.z * e.sinRotation, w.y,
@@ -85,6 +106,9 @@ QL_FN EnvironmentMap environmentMapHeader() {
   e.height = uint(h.y);
   e.cosRotation = h.z;
   e.sinRotation = h.w;
+  vec4 tiles = QL_ENV_TEXEL_AT(1u);
+  e.tilesX = uint(tiles.x);
+  e.tilesY = uint(tiles.y);
   return e;
 }
 
@@ -92,8 +116,14 @@ QL_FN uint environmentTexelIndex(EnvironmentMap e, uint col, uint row) {
   return kEnvironmentHeaderTexels + row * e.width + col;
 }
 
-// The map's texel seen in world direction w: (radiance rgb, solid-angle pdf of NEE's sampler).
-QL_FN vec4 environmentLookup(EnvironmentMap e, vec3 w) {
+struct EnvironmentTexel {
+  vec3 radiance;  // the texel's (unscaled by the light's strength)
+  float pdf;      // per solid angle, of the sampler of the tile holding the direction
+  uint tile;      // ty * tilesX + tx
+};
+
+// The map's texel seen in world direction w.
+QL_FN EnvironmentTexel environmentLookup(EnvironmentMap e, vec3 w) {
   vec3 m = environmentMapFromWorld(e, w);
   vec2 uv = environmentUvOfDirection(m);
   uint col = min(uint(max(uv.x, 0.0f) * float(e.width)), e.width - 1u);
@@ -101,7 +131,12 @@ QL_FN vec4 environmentLookup(EnvironmentMap e, vec3 w) {
   vec4 t = QL_ENV_TEXEL_AT(environmentTexelIndex(e, col, row));
   // From the horizontal part: sqrt(1 - y^2) loses the digits near the poles.
   float sinTheta = sqrt(m.x * m.x + m.z * m.z);
-  return vec4(t.x, t.y, t.z, environmentSolidAnglePdf(t.w, sinTheta));
+  EnvironmentTexel r;
+  r.radiance = vec3(t.x, t.y, t.z);
+  r.pdf = environmentSolidAnglePdf(t.w, sinTheta);
+  r.tile = environmentTileAt(row, e.tilesY, e.height) * e.tilesX +
+           environmentTileAt(col, e.tilesX, e.width);
+  return r;
 }
 
 #ifdef QL_ENV_CDF_AT
@@ -127,14 +162,21 @@ QL_FN uint environmentSearchCdf(uint base, uint count, float target, QL_OUT(floa
 struct EnvironmentSample {
   vec3 direction;  // world, unit
   vec3 radiance;   // the texel's (unscaled by the light's strength)
-  float pdf;       // per solid angle; 0: no sample
+  float pdf;       // per solid angle, given the tile; 0: no sample
 };
 
-QL_FN EnvironmentSample sampleEnvironment(EnvironmentMap e, vec2 u) {
+// A direction within tile `tile` (ty * tilesX + tx) by its pixels' luminance x sin(theta).
+QL_FN EnvironmentSample sampleEnvironmentTile(EnvironmentMap e, uint tile, vec2 u) {
+  uint tx = tile % e.tilesX;
+  uint ty = tile / e.tilesX;
+  uint col0 = environmentTileStart(tx, e.tilesX, e.width);
+  uint row0 = environmentTileStart(ty, e.tilesY, e.height);
+  uint cols = environmentTileStart(tx + 1u, e.tilesX, e.width) - col0;
+  uint rows = environmentTileStart(ty + 1u, e.tilesY, e.height) - row0;
   float dv;
   float du;
-  uint row = environmentSearchCdf(e.width * e.height, e.height, u.y, dv);
-  uint col = environmentSearchCdf(row * e.width, e.width, u.x, du);
+  uint row = row0 + environmentSearchCdf(e.width * e.height + tx * e.height + row0, rows, u.y, dv);
+  uint col = col0 + environmentSearchCdf(row * e.width + col0, cols, u.x, du);
   vec2 uv = vec2((float(col) + du) / float(e.width), (float(row) + dv) / float(e.height));
   vec4 t = QL_ENV_TEXEL_AT(environmentTexelIndex(e, col, row));
   EnvironmentSample s;

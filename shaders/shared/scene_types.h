@@ -135,7 +135,7 @@ struct GpuLight {
   vec3 position;  // triangle: world vertex 0; point/spot: position
   uint type;
   vec3 edge1;     // triangle: v1 - v0; spot/directional: unit direction the light points to
-  uint triangle;  // triangle: its GpuTriangle index (for emissive textures)
+  uint triangle;  // triangle: its GpuTriangle index (emissive textures); sky map: its tile
   vec3 edge2;     // triangle: v2 - v0
   float area;     // triangle: world area
   vec3 emission;  // triangle: radiance; point/spot: intensity (W/sr); directional: irradiance; sky:

@@ -196,7 +196,8 @@ TEST(EnvironmentCli, AbsurdStrengthRotationAndSkyAreRejected) {
 }
 
 // A map larger than the device's texel buffers (simulated: 30,000 texels per buffer; the map
-// has 256 x 128 + 1) is refused before anything is allocated, naming the map and the limit.
+// has 256 x 128 + its 2 header texels) is refused before anything is allocated, naming the
+// map and the limit.
 TEST(EnvironmentCli, MapsLargerThanTheDeviceAreRefusedWithTheLimit) {
   const fs::path map = writeHdr("big.hdr", 256, 128);
   RunResult r = runCommand("QLIGHT_TEST_MAX_TEXEL_ELEMENTS=30000 " + std::string(QLIGHT_BINARY) +
@@ -207,7 +208,7 @@ TEST(EnvironmentCli, MapsLargerThanTheDeviceAreRefusedWithTheLimit) {
   EXPECT_NE(r.output.find("the environment map " + map.string() + " (256x128 texels"),
             std::string::npos)
       << r.output;
-  EXPECT_NE(r.output.find("needs 32769 texels in one buffer; the device allows 30000 "
+  EXPECT_NE(r.output.find("needs 32770 texels in one buffer; the device allows 30000 "
                           "(maxTexelBufferElements)"),
             std::string::npos)
       << r.output;

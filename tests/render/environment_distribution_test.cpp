@@ -1,7 +1,8 @@
 // The environment map's sampler (shaders/shared/environment.h, on CPU copies of the tables
-// the renderer builds): its pdf integrates to 1 over the sphere, every pixel gets the share
-// luminance x sin(theta) says, samples follow the pdf (chi-square), and the pdf a sample
-// states is the one a scattered ray in that direction looks up (what MIS needs).
+// the renderer builds): a tile chosen by its power, then a direction within it. Each tile's
+// pdf integrates to 1 over the tile, every pixel gets the share luminance x sin(theta) says,
+// samples follow the pdf (chi-square), and the pdf and tile a sample states are the ones a
+// scattered ray in that direction looks up (what MIS needs).
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -49,6 +50,27 @@ std::vector<double> expectedShares(const scene::EnvironmentAsset& env) {
   return w;
 }
 
+// Tile t's probability of being chosen by power: its share of the map's luminance integral.
+std::vector<double> tileShares(const render::EnvironmentTables& t) {
+  std::vector<double> shares;
+  for (double tile : t.tileLuminanceIntegrals) shares.push_back(tile / t.luminanceIntegral);
+  return shares;
+}
+
+struct MapSample {
+  shared::EnvironmentSample s;
+  uint32_t tile;
+};
+
+// The renderer's light selection by power restricted to the sky: a tile by its share, then
+// a direction within the tile.
+MapSample sampleMap(EnvironmentMap e, const std::vector<double>& tiles, TestRandom& rnd) {
+  double u = rnd.next(), running = 0.0;
+  uint32_t tile = 0;
+  while (tile + 1 < tiles.size() && (running += tiles[tile]) <= u) ++tile;
+  return {shared::sampleEnvironmentTile(e, tile, rnd.next2()), tile};
+}
+
 // The pixel a world direction falls in, by the test's own trigonometry.
 size_t pixelOf(const scene::EnvironmentAsset& env, glm::vec3 world) {
   double r = glm::radians(double(env.rotationDegrees));
@@ -64,18 +86,23 @@ size_t pixelOf(const scene::EnvironmentAsset& env, glm::vec3 world) {
 
 TEST(EnvironmentDistribution, PdfIntegratesToOneAndEachPixelHoldsItsShare) {
   scene::EnvironmentAsset env = testMap();
-  loadEnvironmentTables(env);
+  const render::EnvironmentTables tables = loadEnvironmentTables(env);
   EnvironmentMap e = shared::environmentMapHeader();
   ASSERT_EQ(e.width, env.width);
   ASSERT_EQ(e.height, env.height);
+  ASSERT_EQ(e.tilesX, shared::kEnvironmentTilesX);
+  ASSERT_EQ(e.tilesY, shared::kEnvironmentTilesY);
+  const std::vector<double> tiles = tileShares(tables);
   // Midpoint rule per pixel in (theta, phi) of the map: pdf x sin(theta) is constant within a
   // pixel, so the rule is exact but for rounding.
   const std::vector<double> shares = expectedShares(env);
+  std::vector<double> withinTile(tiles.size(), 0.0);
   constexpr int kSub = 4;
   double total = 0.0;
   for (uint32_t row = 0; row < env.height; ++row)
     for (uint32_t col = 0; col < env.width; ++col) {
       double pixel = 0.0;
+      uint32_t tile = 0;
       for (int a = 0; a < kSub; ++a)
         for (int b = 0; b < kSub; ++b) {
           glm::vec2 uv((col + (b + 0.5f) / kSub) / env.width,
@@ -83,18 +110,25 @@ TEST(EnvironmentDistribution, PdfIntegratesToOneAndEachPixelHoldsItsShare) {
           glm::vec3 w = shared::environmentWorldFromMap(e, shared::environmentDirectionOfUv(uv));
           double theta = kPiD * uv.y;
           double cell = (2 * kPiD / (env.width * kSub)) * (kPiD / (env.height * kSub));
-          pixel += shared::environmentLookup(e, w).w * std::sin(theta) * cell;
+          shared::EnvironmentTexel t = shared::environmentLookup(e, w);
+          pixel += t.pdf * std::sin(theta) * cell;
+          tile = t.tile;
         }
+      ASSERT_EQ(tile, (row / 3) * e.tilesX + col / 3) << "3 x 3 pixels a tile";
+      withinTile[tile] += pixel;
       const double expected = shares[row * env.width + col];
-      EXPECT_NEAR(pixel, expected, 1e-6 + 1e-4 * expected) << "pixel " << col << ", " << row;
-      total += pixel;
+      EXPECT_NEAR(tiles[tile] * pixel, expected, 1e-6 + 1e-4 * expected)
+          << "pixel " << col << ", " << row;
+      total += tiles[tile] * pixel;
     }
   EXPECT_NEAR(total, 1.0, 1e-5);
+  for (size_t t = 0; t < tiles.size(); ++t)
+    if (tiles[t] > 0.0) EXPECT_NEAR(withinTile[t], 1.0, 1e-5) << "tile " << t;
 }
 
 TEST(EnvironmentDistribution, SamplesFollowThePdfAndStateTheLookedUpPdf) {
   scene::EnvironmentAsset env = testMap();
-  loadEnvironmentTables(env);
+  const std::vector<double> tiles = tileShares(loadEnvironmentTables(env));
   EnvironmentMap e = shared::environmentMapHeader();
   const std::vector<double> shares = expectedShares(env);
   constexpr int kSamples = 400000;
@@ -102,16 +136,17 @@ TEST(EnvironmentDistribution, SamplesFollowThePdfAndStateTheLookedUpPdf) {
   TestRandom rnd(11);
   int mismatches = 0;
   for (int i = 0; i < kSamples; ++i) {
-    shared::EnvironmentSample s = shared::sampleEnvironment(e, rnd.next2());
-    ASSERT_NEAR(glm::length(s.direction), 1.0f, 1e-5f);
-    ASSERT_GT(s.pdf, 0.0f);
-    size_t pixel = pixelOf(env, s.direction);
+    MapSample m = sampleMap(e, tiles, rnd);
+    ASSERT_NEAR(glm::length(m.s.direction), 1.0f, 1e-5f);
+    ASSERT_GT(m.s.pdf, 0.0f);
+    size_t pixel = pixelOf(env, m.s.direction);
     observed[pixel] += 1.0;
-    // A scattered ray in the same direction must see the same density (within rounding of
-    // the trigonometry; a direction on a pixel's very edge may land in its neighbour).
-    glm::vec4 looked = shared::environmentLookup(e, s.direction);
-    if (std::abs(looked.w - s.pdf) > 1e-3f * s.pdf || glm::vec3(looked) != s.radiance ||
-        s.radiance != env.radiance[pixel])
+    // A scattered ray in the same direction must see the same density and tile (within
+    // rounding of the trigonometry; a direction on a pixel's very edge may land in its
+    // neighbour).
+    shared::EnvironmentTexel looked = shared::environmentLookup(e, m.s.direction);
+    if (std::abs(looked.pdf - m.s.pdf) > 1e-3f * m.s.pdf || looked.radiance != m.s.radiance ||
+        looked.tile != m.tile || m.s.radiance != env.radiance[pixel])
       ++mismatches;
   }
   EXPECT_LE(mismatches, kSamples / 10000) << "samples whose lookup or pixel differs";
@@ -125,7 +160,7 @@ TEST(EnvironmentDistribution, SamplesFollowThePdfAndStateTheLookedUpPdf) {
 // 5% higher in the sky above 45 degrees (renormalised).
 TEST(EnvironmentDistribution, ChiSquareCatchesASkyFivePercentOff) {
   scene::EnvironmentAsset env = testMap();
-  loadEnvironmentTables(env);
+  const std::vector<double> tiles = tileShares(loadEnvironmentTables(env));
   EnvironmentMap e = shared::environmentMapHeader();
   std::vector<double> shares = expectedShares(env);
   for (size_t i = 0; i < 6 * env.width; ++i)
@@ -137,19 +172,47 @@ TEST(EnvironmentDistribution, ChiSquareCatchesASkyFivePercentOff) {
   std::vector<double> observed(shares.size(), 0.0), expected(shares.size());
   TestRandom rnd(11);
   for (int i = 0; i < kSamples; ++i)
-    observed[pixelOf(env, shared::sampleEnvironment(e, rnd.next2()).direction)] += 1.0;
+    observed[pixelOf(env, sampleMap(e, tiles, rnd).s.direction)] += 1.0;
   for (size_t i = 0; i < shares.size(); ++i) expected[i] = shares[i] * kSamples;
   EXPECT_FALSE(chiSquareTest(observed, expected).pass());
 }
 
+// Tiles partition any map: every column (row) lies in the tile whose range holds it, and
+// no tile is empty while there are at least as many pixels as tiles.
+TEST(EnvironmentDistribution, TilesPartitionTheMapAtAnySize) {
+  for (uint32_t size = 1; size <= 40; ++size)
+    for (uint32_t tiles = 1; tiles <= std::min(size, 8u); ++tiles) {
+      EXPECT_EQ(shared::environmentTileStart(0, tiles, size), 0u);
+      EXPECT_EQ(shared::environmentTileStart(tiles, tiles, size), size);
+      for (uint32_t t = 0; t < tiles; ++t)
+        EXPECT_LT(shared::environmentTileStart(t, tiles, size),
+                  shared::environmentTileStart(t + 1, tiles, size));
+      for (uint32_t i = 0; i < size; ++i) {
+        const uint32_t t = shared::environmentTileAt(i, tiles, size);
+        ASSERT_LT(t, tiles);
+        EXPECT_LE(shared::environmentTileStart(t, tiles, size), i);
+        EXPECT_GT(shared::environmentTileStart(t + 1, tiles, size), i) << size << " " << tiles;
+      }
+    }
+}
+
 // The map's luminance integral (its power, per unit cross-section) of a uniform map is
-// 4 pi L, whatever the resolution.
+// 4 pi L, whatever the resolution, and each tile holds its solid angle's part.
 TEST(EnvironmentDistribution, LuminanceIntegralOfAUniformMapIsFourPiL) {
   scene::EnvironmentAsset env;
   env.width = 7;
   env.height = 5;
   env.radiance.assign(35, glm::vec3(2.0f));
-  EXPECT_NEAR(render::buildEnvironmentTables(env).luminanceIntegral, 4 * kPiD * 2.0, 1e-5);
+  const render::EnvironmentTables t = render::buildEnvironmentTables(env);
+  EXPECT_NEAR(t.luminanceIntegral, 4 * kPiD * 2.0, 1e-5);
+  ASSERT_EQ(t.tileLuminanceIntegrals.size(), 7u * 4u);  // 8 tiles across are clamped to 7
+  // A tile of rows [r0, r1) and 1 of 7 columns holds its band's solid angle, 2 pi / 7 dcos.
+  for (uint32_t ty = 0; ty < 4; ++ty) {
+    const double r0 = shared::environmentTileStart(ty, 4, 5);
+    const double r1 = shared::environmentTileStart(ty + 1, 4, 5);
+    const double band = 2 * kPiD / 7 * (std::cos(kPiD * r0 / 5) - std::cos(kPiD * r1 / 5));
+    EXPECT_NEAR(t.tileLuminanceIntegrals[ty * 7 + 3], 2.0 * band, 1e-5) << "tile row " << ty;
+  }
 }
 
 }  // namespace

@@ -6,6 +6,7 @@
 
 #include "engine/render/gpu_scene.h"
 #include "engine/session/renderer.h"
+#include "shaders/shared/environment.h"
 #include "tests/render/environment_scenes.h"
 
 namespace qlight::test {
@@ -160,8 +161,9 @@ TEST_F(EnvironmentLight, RotationTurnsTheLightingAboutUp) {
   EXPECT_GT(xLit, 10.0 * zSide);
 }
 
-// The user's environment lights the scene next to its emitters (no fallback); without one a
-// scene with no light gets the fallback sky; a black environment is no light at all.
+// The user's environment lights the scene next to its emitters (no fallback), as one light
+// per tile of its map; without one a scene with no light gets the fallback sky; a black
+// environment is no light at all.
 TEST_F(EnvironmentLight, TheUsersChoiceReplacesTheFallbackSky) {
   scene::SceneAsset box = gltf::loadGltf(assetPath("cornell_box.gltf"));
   scene::SceneAsset plane = upwardPlane(0.5f);
@@ -175,7 +177,8 @@ TEST_F(EnvironmentLight, TheUsersChoiceReplacesTheFallbackSky) {
   EXPECT_FALSE(boxFallback);
   EXPECT_FALSE(boxEnv);
   box.environment = skyWithSun();
-  EXPECT_EQ(lights(box), std::tuple(boxLights + 1, false, true));
+  const uint32_t tiles = shared::kEnvironmentTilesX * shared::kEnvironmentTilesY;
+  EXPECT_EQ(lights(box), std::tuple(boxLights + tiles, false, true));
   EXPECT_EQ(lights(plane), std::tuple(1u, true, false));
   plane.environment = scene::EnvironmentAsset{};
   plane.environment->strength = 0.0f;
