@@ -26,8 +26,8 @@ FrameCounters& FrameCounters::operator+=(const FrameCounters& o) {
 PathTracer::PathTracer(const gpu::Context& ctx, const RenderSettings& settings)
     : ctx_(ctx),
       begin_(ctx, "pt_begin"),
-      variants_(ctx),
       queue_(ctx, "pt_queue"),
+      variants_(ctx),
       queueState_(ctx, 2 * sizeof(shared::QueueState), "path.queues",
                   VK_BUFFER_USAGE_INDIRECT_BUFFER_BIT),
       frameUniforms_(ctx, sizeof(FrameUniforms), "frame.uniforms", 0, gpu::MemoryUse::HostVisible),

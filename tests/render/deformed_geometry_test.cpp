@@ -138,7 +138,9 @@ TEST(DeformedGeometry, CesiumManRefittedAfterSkinningTracesLikeBruteForce) {
       const bool found = shared::traceClosest(origin, target - origin, 1e30f, hit);
       const Closest ref = bruteForce(asset, draw, positions, origin, target - origin);
       ASSERT_EQ(found, ref.draw >= 0) << "ray " << r;
-      if (found) ASSERT_NEAR(hit.t, ref.t, 1e-4f * ref.t) << "ray " << r;
+      if (found) {
+        ASSERT_NEAR(hit.t, ref.t, 1e-4f * ref.t) << "ray " << r;
+      }
       hits += found;
     }
     EXPECT_GT(hits, 100u);
@@ -171,8 +173,9 @@ TEST_F(DeformedRender, SkinnedMorphedAndInstancedSamplesRenderAndMove) {
       images.push_back(renderer.tracer().readImage());
     }
     EXPECT_GT(meanOf(images[0]), 0.0);
-    if (std::string(file).find("Instancing") == std::string::npos)  // the others animate
+    if (std::string(file).find("Instancing") == std::string::npos) {  // the others animate
       EXPECT_NE(images[0].rgba, images[1].rgba);
+    }
   }
 }
 

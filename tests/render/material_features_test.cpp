@@ -389,7 +389,9 @@ TEST_F(MaterialFeatures, AThinGlassPaneTransmitsTheSky) {
     guiding::GuidingSettings g;
     g.enabled = guided;
     auto out = session::renderScene(ctx(), s, settings, 64, 0.0f, g);
-    if (guided) EXPECT_GT(out.stats.guidingStats.points, 10u);
+    if (guided) {
+      EXPECT_GT(out.stats.guidingStats.points, 10u);
+    }
     ASSERT_TRUE(out.stats.fallbackSky);
     std::vector<double> values;
     for (size_t k = 0; k < out.image.rgba.size(); k += 4) values.push_back(out.image.rgba[k + 1]);
