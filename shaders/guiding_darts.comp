@@ -57,7 +57,8 @@ void main() {
     dir = sampleUniformSphere(rngNext2(rng));
   } else {  // directional or sky (from its tile): enter the scene's bounding sphere through a disk
     if (l.type == kLightDirectional) dir = l.edge1;
-    else if (skyHasMap(l)) dir = -sampleEnvironmentTile(environmentMapHeader(), l.triangle, rngNext2(rng)).direction;
+    else if (skyHasMap(l))
+      dir = -sampleEnvironmentTile(environmentMapHeader(), l.triangle, rngNext2(rng)).direction;
     else dir = -sampleUniformSphere(rngNext2(rng));
     TangentFrame f = frameFromNormal(dir);
     vec2 disk = sampleConcentricDisk(rngNext2(rng)) * pc.sceneRadius;

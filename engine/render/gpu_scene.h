@@ -72,8 +72,8 @@ class GpuScene {
   void uploadStatic();
   void uploadEnvironment();
   void uploadLights(const SceneDraw& draw);
-  // The sky light of the user's environment, or of the fallback; power 0 when black.
-  // The sky as lights: one per tile of a map (shaders/shared/environment.h), else one.
+  // The sky of the user's environment, or of the fallback, as lights: one per tile of a map
+  // (shaders/shared/environment.h), else one; powers 0 when black.
   std::vector<shared::GpuLight> skyLights(const scene::EnvironmentAsset& env) const;
   bool applyDeformations(const std::vector<DeformedDraw>& deformed);
   // The mesh's positions as last posed (its file positions until it deforms).
