@@ -54,9 +54,26 @@ void addTracingOptions(CLI::App& app, render::RenderSettings& s) {
 }
 
 void addGuidingOptions(CLI::App& app, guiding::GuidingSettings& g, GuidingCli& cli) {
-  app.add_option("--guiding", g.enabled, "q (Q-learned importance sampling) or off")
-      ->transform(
-          CLI::CheckedTransformer(Words<bool>{{"q", true}, {"off", false}}, CLI::ignore_case));
+  app.add_option_function<std::string>(
+         "--guiding",
+         [&g](const std::string& word) {
+           std::string w = word;
+           for (char& c : w) c = char(std::tolower(static_cast<unsigned char>(c)));
+           g.enabled = w != "off";
+           if (g.enabled) g.method = guideMethodWords().at(w);
+         },
+         "q (Q-learned importance sampling in cache points), dqn (a network of the "
+         "continuous state, trained on the GPU) or off")
+      ->check(CLI::IsMember({"q", "dqn", "off"}, CLI::ignore_case));
+  app.add_option("--dqn-width", g.dqnWidth, "deep Q: neurons per hidden layer (4..128, x4)");
+  app.add_option("--dqn-layers", g.dqnHidden, "deep Q: hidden layers (1..4)");
+  app.add_option("--dqn-bins", g.dqnBins, "deep Q: one-blob bins per position axis (1..32)");
+  app.add_option("--dqn-batch", g.dqnBatch, "deep Q: records per training step");
+  app.add_option("--dqn-steps", g.dqnStepsPerFrame, "deep Q: training steps per frame");
+  app.add_option("--dqn-learning-rate", g.dqnLearningRate, "deep Q: Adam's learning rate")
+      ->check(finiteRange(ranges::kDqnLearningRate));
+  app.add_option("--dqn-target-interval", g.dqnTargetInterval,
+                 "deep Q: frames between target network updates");
   app.add_option("--strata", cli.strata, "hemisphere strata RxC, e.g. 8x8 or 16x8");
   app.add_option("--directions", g.directions,
                  "tree (a quadtree per point that refines where Q is) or strata (D&K's RxC)")

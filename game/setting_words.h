@@ -38,6 +38,12 @@ inline const Words<guiding::DirectionModel>& directionModelWords() {
   return w;
 }
 
+inline const Words<guiding::GuideMethod>& guideMethodWords() {
+  static const Words<guiding::GuideMethod> words{{"q", guiding::GuideMethod::Q},
+                                                 {"dqn", guiding::GuideMethod::Dqn}};
+  return words;
+}
+
 inline const Words<guiding::LearningTarget>& learningTargetWords() {
   static const Words<guiding::LearningTarget> words{{"returns", guiding::LearningTarget::Returns},
                                                     {"td", guiding::LearningTarget::TdStep}};
@@ -70,6 +76,7 @@ inline constexpr Range kExposure{1e-6, 1e6};
 inline constexpr Range kTemporalBlend{0, 0.99};
 inline constexpr Range kHalfLife{0, 1e6};
 inline constexpr Range kForgetOnLightMove{0, 1e3};
+inline constexpr Range kDqnLearningRate{1e-7, 1};
 inline constexpr Range kRenderScale{0.1, 1};
 inline constexpr Range kTargetFrameMs{0, 10000};
 inline constexpr Range kEnvStrength{0, 1e6};

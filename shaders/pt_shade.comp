@@ -167,7 +167,9 @@ uint lookupCachePoint(inout PathState st, uint path, Vertex v, vec3 le, Switches
 ScatterMix scatterMix(uint point, Vertex v, Switches sw) {
   ScatterMix m;
   m.point = point;
-  if (point != kNoCachePoint) {
+  if (kUseDqn) {
+    m.row = dqnRow(v.s.position, v.s.geometricNormal);
+  } else if (point != kNoCachePoint) {
     m.row = guidedRow(point);
   } else {
     m.row.frame = v.tf;
@@ -283,6 +285,8 @@ bool sampleScatter(inout PathState st, inout Rng rng, Vertex v, ScatterMix m, Ra
     st.prevPoint = m.point;
     // The Q entry this direction updates once the next vertex is known.
     st.prevEntry = learn && m.point != kNoCachePoint && pointLocal.z > 0.0 ? g.entry : kNoCachePoint;
+    if (kUseDqn && st.prevEntry != kNoCachePoint)  // the entry is the stratum (row base 0)
+      st.prevEntry = dqnOpenRecord(v.s.position, m.row.frame.normal, st.prevEntry);
     // The ray cone after the bounce: its width here, spread by the lobe (a diffuse bounce
     // blurs what the next hit reads from its textures, a glossy one by its roughness).
     st.coneWidth += st.coneSpread * st.hitT * length(st.dir);

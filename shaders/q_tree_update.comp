@@ -59,7 +59,7 @@ void main() {
   if (targets == 0u && pc.everyRow == 0u) return;
   float kept = keptAfter(pc.clock - rowClocks[row]);
   rowClocks[row] = pc.clock;
-  pointUpdates[row] = agedCount(pointUpdates[row], kept) + targets;
+  pointUpdates[row] = cappedUpdates(agedCount(pointUpdates[row], kept), targets, pc.confidenceCap);
 
   // The update of each leaf, and the area-weighted mean of the visited ones.
   float visitedSum = 0.0, visitedArea = 0.0;

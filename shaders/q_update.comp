@@ -42,7 +42,7 @@ void main() {
   float kept = keptAfter(pc.clock - rowClocks[row]);
   rowClocks[row] = pc.clock;
   if (pc.cosineWeights != 0u)
-    pointUpdates[row] = agedCount(pointUpdates[row], kept) + targets;
+    pointUpdates[row] = cappedUpdates(agedCount(pointUpdates[row], kept), targets, pc.confidenceCap);
 
   // The update; then the sampling weights: a stratum's Q shrunk toward the mean of the
   // row's visited strata (never visited: the mean itself), so an unexplored direction is as

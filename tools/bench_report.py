@@ -77,6 +77,7 @@ METHOD_COLOURS = {
     "guided": "#1f77b4",
     "guided_light": "#d62728",
     "guided_frozen": "#2ca02c",
+    "guided_dqn": "#9467bd",
 }
 SPARE_COLOURS = ["#9467bd", "#8c564b", "#e377c2", "#bcbd22", "#17becf", "#ff7f0e"]
 

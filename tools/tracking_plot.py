@@ -15,7 +15,8 @@ import matplotlib
 matplotlib.use("Agg")
 import matplotlib.pyplot as plt  # noqa: E402
 
-COLOURS = {"tracking": "tab:blue", "remember_all": "tab:orange", "unguided": "tab:gray"}
+COLOURS = {"tracking": "tab:blue", "remember_all": "tab:orange", "unguided": "tab:gray",
+           "unguided_other_seeds": "silver"}
 
 
 def trailing_mean(values, window, jumps):

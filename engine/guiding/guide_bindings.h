@@ -1,7 +1,12 @@
 // The buffers every guide binds in the path tracing passes, one per binding of
 // the guide block (shaders/shared/bindings.h): the one place in C++ that knows
-// those slots, for the Q guide and the null guide alike.
+// those slots, for the Q guide, the deep Q guide and the null guide alike. (The deep Q
+// guide binds its network to qCdf, its replay ring to qSums and the ring's count to qCounts:
+// push descriptors allow 32 bindings a pass, and the path passes use 31 without it.)
 #pragma once
+#include <memory>
+#include <vector>
+
 #include "engine/gpu/pass_recorder.h"
 
 namespace qlight::guiding {
@@ -23,5 +28,19 @@ struct GuideBuffers {
 };
 
 void bindGuideBuffers(gpu::PassBuilder& pass, const GuideBuffers& b);
+
+// Minimal buffers for every guide binding, with guiding off in their uniforms: the null
+// guide binds only these, the deep Q guide these for the cache points' bindings.
+class GuidePlaceholders {
+ public:
+  explicit GuidePlaceholders(const gpu::Context& ctx);
+  const GuideBuffers& buffers() const { return buffers_; }
+
+ private:
+  std::unique_ptr<gpu::Buffer> uniforms_, empty_;
+  std::unique_ptr<gpu::BufferView> emptyFloats_, emptyVec4s_, emptyUints_, emptyUvec4s_;
+  std::vector<std::unique_ptr<gpu::Buffer>> writable_;
+  GuideBuffers buffers_;
+};
 
 }  // namespace qlight::guiding

@@ -22,8 +22,28 @@ enum class DirectionModel : uint32_t {
   Strata,  // D&K's fixed rows x cols strata of equal solid angle
 };
 
+// Where guided directions come from (--guiding q|dqn).
+enum class GuideMethod : uint32_t {
+  Q,    // Q tables in cache points (D&K, van Mastrigt)
+  Dqn,  // a network of the continuous state, trained on the GPU (Comi's deep Q, issue 14)
+};
+
 struct GuidingSettings {
-  bool enabled = true;                                 // --guiding q|off
+  bool enabled = true;  // --guiding q|dqn|off
+  GuideMethod method = GuideMethod::Q;
+  // The deep Q network and its training (GuideMethod::Dqn; shaders/shared/dqn.h).
+  uint32_t dqnWidth = 32;    // neurons per hidden layer (4..128, a multiple of 4)
+  uint32_t dqnHidden = 2;    // hidden layers (1..4)
+  uint32_t dqnBins = 16;     // one-blob bins per position axis (1..32)
+  uint32_t dqnBatch = 2048;  // records per training step
+  uint32_t dqnStepsPerFrame = 1;
+  float dqnLearningRate = 3e-3f;  // Adam's
+  // Frames between copies of the trained network to the one the paths sample from (the
+  // target network).
+  uint32_t dqnTargetInterval = 4;
+  uint32_t dqnReplayFrames = 8;  // frames of records the replay ring holds
+  uint32_t dqnWarmupSteps = 16;  // training steps before the network guides at the full share
+  float dqnFloorShare = 0.1f;    // each stratum's weight gets this share of the mean
   DirectionModel directions = DirectionModel::Strata;  // --directions (tree: being measured)
   uint32_t rows = 8;  // strata: rows x cols, equal solid angle (trees: the nominal resolution
   uint32_t cols = 8;  // of the confidence, rows x cols leaves' worth of updates)

@@ -163,6 +163,7 @@ void LearnedTables::recordUpdate(gpu::PassRecorder& rec, const char* name,
     push.splitShare = settings.treeSplitShare;
     push.splitVisits = settings.treeSplitVisits;
     push.maxDepth = settings.treeMaxDepth;
+    push.confidenceCap = shared::confidenceCapOf(settings.confidenceUpdates, settings.strata());
     pass.write(QL_Q_UPDATE_BIND_CHILDREN, *table.children).push(push);
   } else {
     shared::TableUpdatePush push{};
@@ -176,6 +177,7 @@ void LearnedTables::recordUpdate(gpu::PassRecorder& rec, const char* name,
     push.floorValue = settings.qFloor;
     push.everyRow = everyRow ? 1u : 0u;
     push.clock = float(clock_);
+    push.confidenceCap = shared::confidenceCapOf(settings.confidenceUpdates, settings.strata());
     pass.push(push);
   }
   pass.dispatch(std::min(groups, kMaxGroupsX), (groups + kMaxGroupsX - 1) / kMaxGroupsX);

@@ -61,6 +61,7 @@ class GpuScene {
   bool hasEnvironmentMap() const { return environmentLit_ && asset_.environment->hasMap(); }
   const glm::vec3& boundsCenter() const { return center_; }
   float boundsRadius() const { return radius_; }
+  const scene::Bounds& bounds() const { return asset_.bounds; }  // world space, at t = 0
   const std::vector<shared::GpuLight>& lights() const { return lights_; }
   // Nearest surface along a ray (CPU traversal of the same BVH; for picking).
   std::optional<float> closestHit(glm::vec3 origin, glm::vec3 direction) const {

@@ -11,6 +11,7 @@ namespace qlight::render {
 struct GuideFeatures {
   bool points = false;         // cache points are searched (guided sampling, learning, spawns)
   bool lightLearning = false;  // learned light selection for NEE
+  bool dqn = false;            // the deep Q network guides instead of the points' tables
 };
 
 class Guide {

@@ -98,6 +98,7 @@ const gpu::ComputePipeline& PathTracer::specialized(const char* shader, const Gp
   std::vector<uint32_t> features = scene.specializationFeatures();
   features[shared::kSpecUseGuiding] = guide.points;
   features[shared::kSpecUseLightLearning] = guide.lightLearning;
+  features[shared::kSpecUseDqn] = guide.dqn;
   return variants_.get(shader, features);
 }
 

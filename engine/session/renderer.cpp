@@ -45,7 +45,10 @@ void Renderer::registerSystems() {
       .reads<guiding::CachePoint>()
       .writes<guiding::CachePointSet>()
       .run([this](ecs::Registry& r) {
-        if (qGuide_) qGuide_->uploadPoints(r);
+        if (dqnActive_)
+          dqnGuide_->upload();
+        else if (qGuide_)
+          qGuide_->uploadPoints(r);
       });
   // The shade pass writes the frame's learning targets into the tables' sums.
   s.add("path.trace")
@@ -61,7 +64,11 @@ void Renderer::registerSystems() {
       .reads<FrameRecording>()
       .writes<guiding::LearnedTables>()
       .run([this](ecs::Registry& r) {
-        if (qGuide_) qGuide_->recordLearning(*r.resource<FrameRecording>().recorder);
+        gpu::PassRecorder& recorder = *r.resource<FrameRecording>().recorder;
+        if (dqnActive_)
+          dqnGuide_->recordLearning(recorder);
+        else if (qGuide_)
+          qGuide_->recordLearning(recorder);
       });
   s.compile();
 }
@@ -81,6 +88,7 @@ void Renderer::uploadScene() {
 }
 
 const render::Guide& Renderer::activeGuide() const {
+  if (dqnActive_) return *dqnGuide_;
   if (qGuide_) return *qGuide_;
   return nullGuide_;
 }
@@ -120,14 +128,22 @@ FrameResult Renderer::renderFrame(float time, std::optional<render::CameraView> 
 
 void Renderer::setGuiding(const guiding::GuidingSettings& requested, bool regenerate) {
   const render::RenderSettings& r = tracer_.settings();
+  const uint64_t paths = uint64_t(r.width) * r.height * r.samplesPerFrame;
+  dqnActive_ = requested.enabled && requested.method == guiding::GuideMethod::Dqn;
+  if (dqnActive_) {
+    if (dqnGuide_ && dqnGuide_->sameShape(requested))
+      dqnGuide_->setSettings(requested);
+    else
+      dqnGuide_ = std::make_unique<guiding::DqnGuide>(ctx_, requested, scene_, paths);
+    return;
+  }
   guiding::GuidingSettings settings = requested;
   // An automatic budget is sized once, for the frame the points are made for: a later
   // render-size change does not regenerate the points unless asked to.
   if (requested.pointBudget == 0 && qGuide_ && !regenerate)
     settings.pointBudget = qGuide_->settings().pointBudget;
   else
-    settings.pointBudget =
-        guiding::resolvedPointBudget(requested, uint64_t(r.width) * r.height * r.samplesPerFrame);
+    settings.pointBudget = guiding::resolvedPointBudget(requested, paths);
   if (!qGuide_) {
     if (!settings.enabled) return;
     auto start = std::chrono::steady_clock::now();

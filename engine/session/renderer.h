@@ -19,6 +19,7 @@
 
 #include "engine/gpu/context.h"
 #include "engine/gpu/gpu_timer.h"
+#include "engine/guiding/dqn_guide.h"
 #include "engine/guiding/null_guide.h"
 #include "engine/guiding/q_guide.h"
 #include "engine/render/gpu_scene.h"
@@ -64,7 +65,10 @@ class Renderer {
   void setGuiding(const guiding::GuidingSettings& settings, bool regenerate = false);
   // Null when guiding was never switched on.
   const guiding::QGuide* guide() const { return qGuide_.get(); }
-  bool guided() const { return qGuide_ && qGuide_->settings().enabled; }
+  // The deep Q guide while it is the method in use, else null.
+  const guiding::DqnGuide* dqnGuide() const { return dqnActive_ ? dqnGuide_.get() : nullptr; }
+  guiding::DqnGuide* dqnGuide() { return dqnActive_ ? dqnGuide_.get() : nullptr; }
+  bool guided() const { return dqnActive_ || (qGuide_ && qGuide_->settings().enabled); }
   double pointGenerationSeconds() const { return pointGenerationSeconds_; }
 
   SceneWorld& world() { return world_; }
@@ -89,6 +93,8 @@ class Renderer {
   render::PathTracer tracer_;
   guiding::NullGuide nullGuide_;
   std::unique_ptr<guiding::QGuide> qGuide_;
+  std::unique_ptr<guiding::DqnGuide> dqnGuide_;
+  bool dqnActive_ = false;  // the deep Q guide is the method in use
   gpu::GpuTimer timer_;
   LightMotion lightMotion_;  // how far lights moved: what tracking forgets by
   double pointGenerationSeconds_ = 0;

@@ -25,14 +25,16 @@ void measure(MethodState& m, const image::LinearImage& reference) {
 }  // namespace
 
 std::vector<MethodSpec> benchMethods(const guiding::GuidingSettings& base) {
-  guiding::GuidingSettings off = base, q = base, light = base;
+  guiding::GuidingSettings off = base, q = base, light = base, dqn = base;
   off.enabled = false;
   q.lightLearning = false;
   light.lightLearning = true;
+  dqn.method = guiding::GuideMethod::Dqn;
   return {{"unguided", "unguided (MIS)", off, 0.0},
           {"guided", "Q-guided", q, 0.0},
           {"guided_light", "Q-guided + learned light selection", light, 0.0},
-          {"guided_frozen", "Q-guided, learning frozen after warm-up", q, 0.25}};
+          {"guided_frozen", "Q-guided, learning frozen after warm-up", q, 0.25},
+          {"guided_dqn", "deep Q (network trained on the GPU)", dqn, 0.0}};
 }
 
 std::vector<MethodResult> runMethods(const gpu::Context& ctx, const scene::SceneAsset& asset,
@@ -87,8 +89,10 @@ std::vector<MethodResult> runMethods(const gpu::Context& ctx, const scene::Scene
   std::vector<MethodResult> results;
   for (MethodState& m : states) {
     m.result.sceneLights = m.renderer->scene().lightCount();
-    if (const guiding::QGuide* guide = m.renderer->guide();
-        guide && m.result.spec.guiding.enabled) {
+    if (const guiding::DqnGuide* network = m.renderer->dqnGuide()) {
+      m.result.guideMemoryBytes = network->memoryBytes();
+    } else if (const guiding::QGuide* guide = m.renderer->guide();
+               guide && m.result.spec.guiding.enabled) {
       m.result.guideMemoryBytes = guide->memoryBytes();
       m.result.points = guide->stats().points;
     }

@@ -24,7 +24,7 @@ struct MethodSpec {
 };
 
 // unguided, guided, guided with learned light selection, guided with learning frozen
-// after a quarter of the budget; all from the same base guiding settings.
+// after a quarter of the budget, and deep Q guiding; all from the same base settings.
 std::vector<MethodSpec> benchMethods(const guiding::GuidingSettings& base);
 
 struct MethodResult {

@@ -14,3 +14,5 @@ layout(constant_id = QL_SPEC_USE_VERTEX_EXTRAS) const bool kUseVertexExtras = tr
 layout(constant_id = QL_SPEC_USE_ENVIRONMENT_MAP) const bool kUseEnvironmentMap = true;
 // Materials with alphaMode MASK or BLEND: traversal tests their alpha at each candidate hit.
 layout(constant_id = QL_SPEC_USE_ALPHA_TEST) const bool kUseAlphaTest = true;
+// Deep Q guiding: the network at each vertex instead of the cache points' tables.
+layout(constant_id = QL_SPEC_USE_DQN) const bool kUseDqn = false;

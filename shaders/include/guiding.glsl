@@ -19,6 +19,15 @@ layout(binding = QL_BIND_POINT_UPDATES) uniform usamplerBuffer uPointUpdates;
 // Direction trees (kGuideTree): QL_BIND_Q_CDF holds the slots' weights (4 a texel, one texel a
 // node), this the slots' children.
 layout(binding = QL_BIND_Q_CHILDREN) uniform usamplerBuffer uQChildren;
+// Deep Q (kUseDqn) binds the tables' slots to its own buffers: QL_BIND_Q_CDF holds the
+// network the paths sample from (an RGBA32F view: 4 parameters a texel), QL_BIND_Q_SUM the replay ring (DqnRecord, 8 words each) and
+// QL_BIND_Q_COUNT's first word the count of this frame's records.
+#define QL_DQN_WEIGHT4(i4) texelFetch(uQCdf, int(i4))
+#include "include/dqn.glsl"
+// The vertex's guided distribution with deep Q: the inclusive CDF of Q_k cosInt_k, filled
+// by dqnRow and read through qCdf like a point's row (base 0), so sampling, pdf and MIS are
+// the tables' code.
+float dqnCdf[kDqnMaxOutputs];
 
 
 GpuCachePoint cachePointAt(uint i) {
@@ -31,7 +40,7 @@ GpuCachePoint cachePointAt(uint i) {
   p.pad = 0u;
   return p;
 }
-float qCdf(uint i) { return texelFetch(uQCdf, int(i)).x; }
+float qCdf(uint i) { return kUseDqn ? dqnCdf[i] : texelFetch(uQCdf, int(i)).x; }
 float vCdf(uint i) { return texelFetch(uVCdf, int(i)).x; }
 
 #define QL_CDF_AT(i) qCdf(i)
@@ -45,6 +54,7 @@ uint strataCount() { return guiding.rows * guiding.cols; }
 bool treeDirections() { return (guiding.flags & kGuideTree) != 0u; }
 
 float pointConfidence(uint point) {
+  if (kUseDqn) return guiding.dqn.confidence;  // the network's, from its training steps
   return confidenceOf(texelFetch(uPointUpdates, int(point)).x, guiding.confidenceUpdates,
                       strataCount());
 }
@@ -55,7 +65,9 @@ float pointConfidence(uint point) {
 #define QL_GRID_POINT_AT(j) texelFetch(uGridPoints, int(j)).x
 #include "shared/point_search.h"
 
+// With deep Q every vertex is its own state: point 0 stands for "the vertex itself".
 uint findCachePoint(vec3 p, vec3 n) {
+  if (kUseDqn) return 0u;
   if (guiding.pointCount == 0u) return kNoCachePoint;
   return findNearestCachePoint(p, n, guiding.cellSize, guiding.hashSize, guiding.searchRadius,
                                guiding.normalCosine);
@@ -84,6 +96,51 @@ GuidedRow guidedRow(uint point) {
     r.total = qCdf(r.base + strataCount() - 1u);
   }
   return r;
+}
+
+// The network's distribution at a vertex (deep Q): Q_k = exp(z_k) for each stratum of the
+// frame of its normal, plus a floor share of their mean, so every direction stays possible
+// whatever the network outputs; weights that are not finite fall back to uniform Q.
+GuidedRow dqnRow(vec3 position, vec3 normal) {
+  GuidedRow r;
+  r.frame = frameFromNormal(normal);
+  r.base = 0u;
+  DqnShape s = guiding.dqn.shape;
+  dqnForwardHidden(s, (position - guiding.dqn.sceneMin) * guiding.dqn.sceneInvExtent, normal);
+  float mean = 0.0;
+  for (uint k = 0u; k < s.outputs; ++k) {
+    dqnCdf[k] = dqnQ(dqnOutputZ(s, k));
+    mean += dqnCdf[k];
+  }
+  float floorQ = guiding.dqn.floorShare * mean / float(s.outputs);
+  bool finite = mean > 0.0 && !isinf(mean) && !isnan(mean);
+  float run = 0.0;
+  for (uint k = 0u; k < s.outputs; ++k) {
+    run += guidedStratumWeight(finite ? dqnCdf[k] + floorQ : 1.0, k, guiding.rows, guiding.cols);
+    dqnCdf[k] = run;
+  }
+  r.total = run;
+  return r;
+}
+
+// A vertex's experience for the replay ring: its state and the stratum it scattered into;
+// the return comes when the path is done (recordQTarget). The frame's records past its quota
+// teach nothing.
+uint dqnOpenRecord(vec3 position, vec3 normal, uint stratum) {
+  uint index = atomicAdd(qCount[0], 1u);
+  if (index >= guiding.dqn.frameQuota) return kNoCachePoint;
+  uint slot = (guiding.dqn.frameStart + index) % guiding.dqn.capacity;
+  vec3 p01 = (position - guiding.dqn.sceneMin) * guiding.dqn.sceneInvExtent;
+  uint w = 8u * slot;  // DqnRecord: position01, stratum, normal, target
+  qSum[w] = floatBitsToUint(p01.x);
+  qSum[w + 1u] = floatBitsToUint(p01.y);
+  qSum[w + 2u] = floatBitsToUint(p01.z);
+  qSum[w + 3u] = stratum;
+  qSum[w + 4u] = floatBitsToUint(normal.x);
+  qSum[w + 5u] = floatBitsToUint(normal.y);
+  qSum[w + 6u] = floatBitsToUint(normal.z);
+  qSum[w + 7u] = floatBitsToUint(kDqnNoTarget);
+  return slot;
 }
 
 // A direction at a point: the Q entry it updates and its guided density. Found once per
@@ -173,6 +230,10 @@ uvec2 fixedPoint(float target) {
 
 void recordQTarget(uint entry, float target) {
   if (entry == kNoCachePoint || !(target >= 0.0) || isinf(target)) return;
+  if (kUseDqn) {  // the entry is the vertex's replay record: its target word
+    qSum[8u * entry + 7u] = floatBitsToUint(target);
+    return;
+  }
   uvec2 v = fixedPoint(target);
   uint old = atomicAdd(qSum[2u * entry], v.x);
   atomicAdd(qSum[2u * entry + 1u], v.y + (old + v.x < old ? 1u : 0u));

@@ -5,6 +5,7 @@
 #define QLIGHT_SHARED_GUIDING_TYPES_H
 #include "bindings.h"
 #include "common.h"
+#include "dqn.h"
 
 QL_BEGIN
 
@@ -29,6 +30,8 @@ QL_CONST uint kGuideSpawn = 8u;       // report camera hits with no cache point 
 QL_CONST uint kGuideLearnReturns = 16u;
 // Directions as a quadtree per point (shared/direction_tree.h) instead of rows x cols strata.
 QL_CONST uint kGuideTree = 32u;
+// Directions from the deep Q network at the vertex itself (shared/dqn.h), not from a point.
+QL_CONST uint kGuideDqn = 64u;
 
 struct GuidingUniforms {
   uint rows;  // strata rows (equal-height zones in cos theta)
@@ -51,8 +54,9 @@ struct GuidingUniforms {
   float confidenceUpdates;
   uint treeNodes;  // nodes per point (kGuideTree)
   uint pad0, pad1, pad2;
+  DqnUniforms dqn;  // the network (kGuideDqn)
 };
-QL_CHECK_SIZE(GuidingUniforms, 80);
+QL_CHECK_SIZE(GuidingUniforms, 144);
 
 QL_CONST uint kNoCachePoint = 0xffffffffu;
 
@@ -87,9 +91,10 @@ struct TableUpdatePush {
   float alphaMin;
   float alphaMax;
   float floorValue;
-  uint everyRow;  // 1: rebuild the CDF of rows without targets too (after a reset)
-  float clock;    // tracking's forgetting clock (halvings so far; a row ages by its advance)
-  uint pad0, pad1;
+  uint everyRow;       // 1: rebuild the CDF of rows without targets too (after a reset)
+  float clock;         // tracking's forgetting clock (halvings so far; a row ages by its advance)
+  uint confidenceCap;  // a point's update count stops here (confidenceCapOf; 0: no cap)
+  uint pad0;
 };
 QL_CHECK_SIZE(TableUpdatePush, 48);
 
@@ -101,12 +106,13 @@ struct TreeUpdatePush {
   float alphaMin;
   float alphaMax;
   float floorValue;
-  uint everyRow;     // 1: also the points without targets (after a reset)
-  float clock;       // as TableUpdatePush
-  float splitShare;  // a leaf with more of its point's weight than this splits
-  uint splitVisits;  // ... once it has had this many visits
-  uint maxDepth;     // node levels, root included
-  uint pad0, pad1;
+  uint everyRow;       // 1: also the points without targets (after a reset)
+  float clock;         // as TableUpdatePush
+  float splitShare;    // a leaf with more of its point's weight than this splits
+  uint splitVisits;    // ... once it has had this many visits
+  uint maxDepth;       // node levels, root included
+  uint confidenceCap;  // as TableUpdatePush
+  uint pad0;
 };
 QL_CHECK_SIZE(TreeUpdatePush, 48);
 
@@ -175,6 +181,17 @@ QL_FN float retainedAfterUpdates(uint n0, uint m, float alphaMin, float alphaMax
 QL_FN float keptAfter(float halvings) { return halvings > 0.0f ? exp2(-halvings) : 1.0f; }
 QL_FN uint agedCount(uint count, float kept) {
   return kept < 1.0f ? uint(float(count) * kept) : count;
+}
+
+// A point's update count stops where its confidence reaches 1: counted beyond, a point that
+// had seen thousands of updates would keep full confidence through a light's jump however
+// much forgetting ages the count. 0: no cap (confidenceUpdates 0 trusts every point at once).
+QL_FN uint confidenceCapOf(float confidenceUpdates, uint strata) {
+  return confidenceUpdates > 0.0f ? uint(ceil(confidenceUpdates * float(strata))) : 0u;
+}
+QL_FN uint cappedUpdates(uint agedUpdates, uint targets, uint cap) {
+  uint n = agedUpdates + targets;
+  return cap > 0u ? min(n, cap) : n;
 }
 
 // How far a point's learned distribution can be trusted: 0 without updates, 1 after

@@ -15,6 +15,7 @@
 #define QL_SPEC_USE_VERTEX_EXTRAS 7
 #define QL_SPEC_USE_ENVIRONMENT_MAP 8
 #define QL_SPEC_USE_ALPHA_TEST 9
+#define QL_SPEC_USE_DQN 10
 
 QL_BEGIN
 QL_CONST uint kSpecUseTextures = QL_SPEC_USE_TEXTURES;
@@ -24,7 +25,8 @@ QL_CONST uint kSpecUseNonTriangleLights = QL_SPEC_USE_NON_TRIANGLE_LIGHTS;
 QL_CONST uint kSpecUseVertexExtras = QL_SPEC_USE_VERTEX_EXTRAS;
 QL_CONST uint kSpecUseEnvironmentMap = QL_SPEC_USE_ENVIRONMENT_MAP;
 QL_CONST uint kSpecUseAlphaTest = QL_SPEC_USE_ALPHA_TEST;
-QL_CONST uint kSpecPathFeatureCount = QL_SPEC_USE_ALPHA_TEST + 1u;  // values to pass
+QL_CONST uint kSpecUseDqn = QL_SPEC_USE_DQN;
+QL_CONST uint kSpecPathFeatureCount = QL_SPEC_USE_DQN + 1u;  // values to pass
 QL_END
 
 #endif

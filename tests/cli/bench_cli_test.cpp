@@ -49,7 +49,8 @@ TEST(BenchCli, QuickModeWritesReportJsonAndPlotsWithFiniteFigures) {
   collectMissing(j, "", missing);
   EXPECT_TRUE(missing.empty()) << missing.front();
   ASSERT_EQ(j["scenes"].size(), 1u);
-  EXPECT_EQ(j["scenes"][0]["methods"].size(), 4u);
+  ASSERT_EQ(j["scenes"][0]["methods"].size(), 5u);
+  EXPECT_EQ(j["scenes"][0]["methods"][4]["name"], "guided_dqn");
 
   // A second run finds the reference in the cache.
   auto again = runQlight(

@@ -188,5 +188,53 @@ TEST_F(QUpdateGpu, CountsAgeByTheClocksAdvanceSinceTheRowsLastUpdate) {
   EXPECT_FLOAT_EQ(gq[1], 1.0f);
 }
 
+// A point's update count stops where its confidence is full (confidenceUpdates x strata), so
+// after a light's jump the aged count is the share of full confidence that the forgetting
+// kept, however long the point had been learning before.
+TEST_F(QUpdateGpu, PointUpdateCountsStopAtFullConfidence) {
+  const uint32_t points = 3, rows = 2, cols = 2, strata = rows * cols, n = points * strata;
+  const float confidenceUpdates = 4.0f;
+  const uint32_t cap = shared::confidenceCapOf(confidenceUpdates, strata);
+  ASSERT_EQ(cap, 16u);
+  EXPECT_EQ(shared::confidenceCapOf(0.0f, strata), 0u) << "trusting at once needs no cap";
+  std::vector<uint32_t> counts(n, 0), pointUpdates{10, 15, 5000};
+  counts[0] = 2;                                    // point 0: 10 + 2 stays below the cap
+  counts[strata] = 3;                               // point 1: 15 + 3 stops at 16
+  counts[2 * strata] = counts[2 * strata + 1] = 1;  // point 2: a count from before the cap
+  std::vector<uint32_t> fixedSums(2 * n, 0);
+  for (uint32_t e = 0; e < n; ++e) fixedSums[2 * e] = uint32_t(counts[e] * shared::kTargetScale);
+  TableBuffers t(ctx(), n, points);
+  t.q.upload<float>(ctx(), std::vector<float>(n, 1.0f));
+  t.visits.upload<uint32_t>(ctx(), std::vector<uint32_t>(n, 10));
+  t.cdf.upload<float>(ctx(), std::vector<float>(n, 0.0f));
+  t.sums.upload<uint32_t>(ctx(), fixedSums);
+  t.counts.upload<uint32_t>(ctx(), counts);
+  t.pointUpdates.upload<uint32_t>(ctx(), pointUpdates);
+  t.rowClocks.upload<float>(ctx(), std::vector<float>(points, 0.0f));
+  shared::TableUpdatePush push{points, strata, rows, cols, 1, 1e-4f, 1.0f, 1e-4f, 0, 0.0f};
+  push.confidenceCap = cap;
+  t.learningPass(ctx(), push);
+  const auto capped = t.pointUpdates.read<uint32_t>(ctx());
+  EXPECT_EQ(capped[0], 12u);
+  EXPECT_EQ(capped[1], cap);
+  EXPECT_EQ(capped[2], cap);
+  // The same pass with a jump of 4 halvings since the rows' last update: 1/16 of full.
+  t.pointUpdates.upload<uint32_t>(ctx(), std::vector<uint32_t>(points, 5000));
+  t.counts.upload<uint32_t>(ctx(), counts);
+  t.sums.upload<uint32_t>(ctx(), fixedSums);
+  push.clock = 4.0f;
+  t.learningPass(ctx(), push);
+  const auto aged = t.pointUpdates.read<uint32_t>(ctx());
+  EXPECT_EQ(aged[0], cap) << "5000 aged to 312, plus 2, capped";
+  t.pointUpdates.upload<uint32_t>(ctx(), std::vector<uint32_t>(points, cap));
+  t.counts.upload<uint32_t>(ctx(), counts);
+  t.sums.upload<uint32_t>(ctx(), fixedSums);
+  t.rowClocks.upload<float>(ctx(), std::vector<float>(points, 0.0f));
+  t.learningPass(ctx(), push);
+  const auto agedFromFull = t.pointUpdates.read<uint32_t>(ctx());
+  EXPECT_EQ(agedFromFull[0], 1u + 2u) << "full confidence aged 4 halvings keeps 1/16";
+  EXPECT_EQ(agedFromFull[1], 1u + 3u);
+}
+
 }  // namespace
 }  // namespace qlight::test
