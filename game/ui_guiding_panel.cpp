@@ -24,8 +24,7 @@ void drawNetworkSettings(guiding::GuidingSettings& s) {
   ImGui::SliderInt("one-blob bins", &bins, 1, int(shared::kDqnMaxBins), "%d", kClamp);
   ImGui::SliderInt("batch", &batch, 64, 16384, "%d", ImGuiSliderFlags_Logarithmic | kClamp);
   ImGui::SliderInt("steps per frame", &steps, 0, 8, "%d", kClamp);
-  ImGui::SliderFloat("network learning rate", &s.dqnLearningRate, 1e-5f, 1e-1f, "%.5f",
-                     kLogClamp);
+  ImGui::SliderFloat("network learning rate", &s.dqnLearningRate, 1e-5f, 1e-1f, "%.5f", kLogClamp);
   ImGui::SliderInt("target interval", &interval, 1, 64, "%d frames", kClamp);
   s.dqnWidth = uint32_t(4 * width);
   s.dqnHidden = uint32_t(layers);
@@ -76,7 +75,8 @@ GuidingPanelResult drawGuidingSection(guiding::GuidingSettings& s,
   ImGui::Checkbox("learned light selection", &s.lightLearning);
   ImGui::SliderFloat("light mix", &s.lightMix, 0.0f, 0.95f, "%.2f", kClamp);
   if (s.method == guiding::GuideMethod::Dqn) drawNetworkSettings(s);
-  r.changed = s.enabled != before.enabled || s.method != before.method || networkChanged(s, before) || s.learn != before.learn || s.target != before.target ||
+  r.changed = s.enabled != before.enabled || s.method != before.method ||
+              networkChanged(s, before) || s.learn != before.learn || s.target != before.target ||
               s.rows != before.rows || s.cols != before.cols || s.alphaMin != before.alphaMin ||
               s.alphaMax != before.alphaMax || s.halfLifeFrames != before.halfLifeFrames ||
               s.forgetOnLightMove != before.forgetOnLightMove ||
