@@ -9,7 +9,7 @@
 namespace qlight::guiding {
 namespace {
 
-constexpr uint32_t kVerticesPerPath = 4;       // records a frame keeps per path, at most
+constexpr uint32_t kVerticesPerPath = 4;        // records a frame keeps per path, at most
 constexpr uint32_t kMaxRingRecords = 1u << 20;  // 32 MB of records
 constexpr float kBeta1 = 0.9f, kBeta2 = 0.999f, kAdamEpsilon = 1e-8f;
 
@@ -18,8 +18,8 @@ shared::DqnShape shapeOf(const GuidingSettings& s) {
 }
 
 uint32_t frameQuota(uint64_t pathsPerFrame, uint32_t replayFrames) {
-  return uint32_t(std::clamp<uint64_t>(pathsPerFrame * kVerticesPerPath, 1024,
-                                       kMaxRingRecords / replayFrames));
+  return uint32_t(
+      std::clamp<uint64_t>(pathsPerFrame * kVerticesPerPath, 1024, kMaxRingRecords / replayFrames));
 }
 
 }  // namespace
@@ -55,7 +55,8 @@ DqnGuide::DqnGuide(const gpu::Context& ctx, const GuidingSettings& settings,
   sceneInvExtent_ = 1.0f / (hi - lo + 2.0f * pad);
   targetView_ = std::make_unique<gpu::BufferView>(ctx, target_, VK_FORMAT_R32G32B32A32_SFLOAT);
   uploadWeights(initialWeights(shape_, settings.seed));
-  std::vector<shared::DqnRecord> none(capacity_, shared::DqnRecord{{}, 0, {}, shared::kDqnNoTarget});
+  std::vector<shared::DqnRecord> none(capacity_,
+                                      shared::DqnRecord{{}, 0, {}, shared::kDqnNoTarget});
   records_.upload<shared::DqnRecord>(ctx, none);
   counter_.upload<uint32_t>(ctx, std::vector<uint32_t>(4, 0));
   upload();

@@ -18,10 +18,10 @@ namespace qlight::guiding {
 
 struct DqnStats {
   uint32_t parameters = 0;
-  uint32_t steps = 0;       // training steps so far
+  uint32_t steps = 0;  // training steps so far
   uint32_t recordsPerFrame = 0;
-  uint32_t capacity = 0;    // records in the replay ring
-  float confidence = 0;     // guided share factor
+  uint32_t capacity = 0;  // records in the replay ring
+  float confidence = 0;   // guided share factor
 };
 
 class DqnGuide final : public render::Guide {

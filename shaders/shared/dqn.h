@@ -18,12 +18,12 @@
 
 QL_BEGIN
 
-QL_CONST uint kDqnMaxBins = 32u;     // one-blob bins per position axis
-QL_CONST uint kDqnMaxWidth = 128u;   // neurons per hidden layer
-QL_CONST uint kDqnMaxHidden = 4u;    // hidden layers
-QL_CONST uint kDqnMaxOutputs = 256u; // strata
+QL_CONST uint kDqnMaxBins = 32u;      // one-blob bins per position axis
+QL_CONST uint kDqnMaxWidth = 128u;    // neurons per hidden layer
+QL_CONST uint kDqnMaxHidden = 4u;     // hidden layers
+QL_CONST uint kDqnMaxOutputs = 256u;  // strata
 QL_CONST uint kDqnMaxInputs = 3u * kDqnMaxBins + 4u;
-QL_CONST uint kDqnGroupSize = 64u;   // threads per workgroup of the training passes
+QL_CONST uint kDqnGroupSize = 64u;  // threads per workgroup of the training passes
 
 // A record's target before its path brought its return back (or when it never does).
 QL_CONST float kDqnNoTarget = -1.0f;
@@ -38,15 +38,11 @@ struct DqnShape {
 QL_FN uint dqnInputs(DqnShape s) { return 3u * s.bins + 3u; }  // position blobs, normal
 QL_FN uint dqnRoundUp4(uint n) { return (n + 3u) & ~3u; }
 QL_FN uint dqnLayerCount(DqnShape s) { return s.hidden + 1u; }
-QL_FN uint dqnLayerInputs(DqnShape s, uint layer) {
-  return layer == 0u ? dqnInputs(s) : s.width;
-}
+QL_FN uint dqnLayerInputs(DqnShape s, uint layer) { return layer == 0u ? dqnInputs(s) : s.width; }
 QL_FN uint dqnLayerOutputs(DqnShape s, uint layer) {
   return layer == s.hidden ? s.outputs : s.width;
 }
-QL_FN uint dqnRowStride(DqnShape s, uint layer) {
-  return dqnRoundUp4(dqnLayerInputs(s, layer));
-}
+QL_FN uint dqnRowStride(DqnShape s, uint layer) { return dqnRoundUp4(dqnLayerInputs(s, layer)); }
 QL_FN uint dqnLayerSize(DqnShape s, uint layer) {
   uint outs = dqnLayerOutputs(s, layer);
   return outs * dqnRowStride(s, layer) + dqnRoundUp4(outs);
@@ -116,29 +112,29 @@ struct DqnUniforms {
   vec3 sceneMin;  // position01 = (position - sceneMin) * sceneInvExtent
   uint capacity;  // records in the ring
   vec3 sceneInvExtent;
-  uint frameStart;  // where this frame's records start in the ring
-  uint frameQuota;  // most records a frame writes (the rest of its vertices teach nothing)
-  float confidence; // guided share factor: ramps up over the first training steps
-  float floorShare; // every stratum's weight gets this share of the mean weight
+  uint frameStart;    // where this frame's records start in the ring
+  uint frameQuota;    // most records a frame writes (the rest of its vertices teach nothing)
+  float confidence;   // guided share factor: ramps up over the first training steps
+  float floorShare;   // every stratum's weight gets this share of the mean weight
   float targetScale;  // targets are learned in these units
 };
 QL_CHECK_SIZE(DqnUniforms, 64);
 
 // Training: the per-record pass (forward, loss, backward) and the per-parameter pass
 // (gradient over the batch, Adam).
-#define QL_DQN_BIND_WEIGHTS 0       // online network (read by the record pass, written by Adam)
-#define QL_DQN_BIND_RECORDS 1       // the replay ring
-#define QL_DQN_BIND_SCRATCH 2       // per batch record: inputs, activations, deltas
-#define QL_DQN_BIND_ADAM 3          // first and second moments per parameter
-#define QL_DQN_BIND_GRADIENT 4      // the step's gradient (tests and stats)
-#define QL_DQN_BIND_LOSS 5          // per batch record: its loss (0 for empty records)
-#define QL_DQN_BIND_OUTPUT 6        // dqn_evaluate.comp: Q per stratum of each state
+#define QL_DQN_BIND_WEIGHTS 0   // online network (read by the record pass, written by Adam)
+#define QL_DQN_BIND_RECORDS 1   // the replay ring
+#define QL_DQN_BIND_SCRATCH 2   // per batch record: inputs, activations, deltas
+#define QL_DQN_BIND_ADAM 3      // first and second moments per parameter
+#define QL_DQN_BIND_GRADIENT 4  // the step's gradient (tests and stats)
+#define QL_DQN_BIND_LOSS 5      // per batch record: its loss (0 for empty records)
+#define QL_DQN_BIND_OUTPUT 6    // dqn_evaluate.comp: Q per stratum of each state
 
 struct DqnTrainPush {
   DqnShape shape;
-  uint batch;       // records per step
-  uint capacity;    // ring size
-  uint step;        // Adam's step (from 1), also the record draw's seed
+  uint batch;     // records per step
+  uint capacity;  // ring size
+  uint step;      // Adam's step (from 1), also the record draw's seed
   float targetScale;
   float learningRate;
   float beta1;

@@ -34,7 +34,8 @@ struct CpuNetwork {
     const float p[3] = {r.position01.x, r.position01.y, r.position01.z};
     for (int axis = 0; axis < 3; ++axis)
       for (uint32_t b = 0; b < s.bins; ++b) {
-        const double c = (b + 0.5) / s.bins, d = (std::clamp(double(p[axis]), 0.0, 1.0) - c) * s.bins;
+        const double c = (b + 0.5) / s.bins,
+                     d = (std::clamp(double(p[axis]), 0.0, 1.0) - c) * s.bins;
         x.push_back(std::exp(-0.5 * d * d));
       }
     x.push_back(r.normal.x);
@@ -234,8 +235,8 @@ TEST_F(DqnNetwork, LearnsAKnownIncidentRadiance) {
   EXPECT_LT(error, 0.35) << "mean relative error of Q";
   // The truth gives the lit stratum 0.9 / 2.4 = 0.375 of the sum; untrained, 1/16.
   EXPECT_NEAR(litShare, 0.375, 0.05);
-  std::printf("learned: mean relative error %.3f, lit stratum's share %.3f (truth 0.375)\n",
-              error, litShare);
+  std::printf("learned: mean relative error %.3f, lit stratum's share %.3f (truth 0.375)\n", error,
+              litShare);
 }
 
 }  // namespace
