@@ -97,6 +97,7 @@ void drawGuideViewControls(GuideViewSettings& s) {
 
 void GuideViews::refreshPoints(session::Renderer& renderer, const render::CameraView& camera) {
   visible_.clear();
+  if (!renderer.guide() || renderer.dqnGuide()) return;  // deep Q has no points
   // Only the points the camera sees: one CPU ray per point, a few times a second.
   for (const guiding::PointSummary& p :
        guiding::summarizePoints(renderer.world().registry(), *renderer.guide())) {
@@ -115,6 +116,21 @@ void GuideViews::refreshDetail(session::Renderer& renderer, const render::Camera
   const glm::vec3 dir = frame.rayThrough(mouse, display);
   const std::optional<float> t = renderer.scene().closestHit(camera.position, dir);
   if (!t) return;
+  if (const guiding::DqnGuide* network = renderer.dqnGuide()) {
+    // The surface's normal from two more hits a pixel aside (the CPU picking ray gives t only).
+    const glm::vec3 p = camera.position + *t * dir;
+    const glm::vec3 dx = frame.rayThrough(ImVec2(mouse.x + 1, mouse.y), display);
+    const glm::vec3 dy = frame.rayThrough(ImVec2(mouse.x, mouse.y + 1), display);
+    const std::optional<float> tx = renderer.scene().closestHit(camera.position, dx);
+    const std::optional<float> ty = renderer.scene().closestHit(camera.position, dy);
+    if (!tx || !ty) return;
+    glm::vec3 n = glm::cross(camera.position + *tx * dx - p, camera.position + *ty * dy - p);
+    if (!(glm::dot(n, n) > 0.0f)) return;
+    if (glm::dot(n, dir) > 0.0f) n = -n;  // facing the viewer
+    detail_ = guiding::inspectNetworkAt(*network, p, n);
+    return;
+  }
+  if (!renderer.guide()) return;
   detail_ = guiding::inspectPointAt(renderer.world().registry(), *renderer.guide(),
                                     camera.position + *t * dir, -dir);
 }

@@ -9,6 +9,7 @@
 
 #include "engine/ecs/registry.h"
 #include "engine/guiding/cache_point.h"
+#include "engine/guiding/dqn_guide.h"
 #include "engine/guiding/q_guide.h"
 
 namespace qlight::guiding {
@@ -31,5 +32,8 @@ struct PointDetail {
 // within the search radius whose normal faces the viewer; none when no point is in reach.
 std::optional<PointDetail> inspectPointAt(ecs::Registry& registry, const QGuide& guide,
                                           glm::vec3 position, glm::vec3 towardViewer);
+// Deep Q: what the network says at a surface position with its geometric normal (facing the
+// viewer), in the same strata; confidence is the network's guided share factor.
+PointDetail inspectNetworkAt(const DqnGuide& guide, glm::vec3 position, glm::vec3 normal);
 
 }  // namespace qlight::guiding
