@@ -62,8 +62,8 @@ std::optional<PointDetail> inspectPointAt(ecs::Registry& registry, const QGuide&
 PointDetail inspectNetworkAt(const DqnGuide& guide, glm::vec3 position, glm::vec3 normal) {
   const GuidingSettings& s = guide.settings();
   shared::DqnRecord state{guide.position01(position), 0, glm::normalize(normal), 0.0f};
-  PointDetail detail{CachePoint{position, 0.0f, state.normal, 0}, s.rows, s.cols,
-                     guide.evaluate({state}), {}};
+  PointDetail detail{
+      CachePoint{position, 0.0f, state.normal, 0}, s.rows, s.cols, guide.evaluate({state}), {}};
   detail.confidence = guide.stats().confidence;
   return detail;
 }
