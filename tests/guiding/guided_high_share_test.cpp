@@ -1,11 +1,11 @@
-// Guided sampling at the highest share the settings allow (0.95) and full
-// confidence from the first update: nearly every direction comes from the
-// learned distribution, so its pdf must be exactly the density it samples.
-// The renders must still converge to the right answer:
+// Guided sampling at the highest share the settings allow (0.95) and full trust from the
+// first update, by the cache points' Q tables and by the deep Q network: nearly every
+// direction comes from the learned distribution, so its pdf must be exactly the density it
+// samples, whatever was learned. The renders must still converge to the right answer:
 //  - a white furnace (closed box, albedo a, emission E everywhere) equals
 //    E / (1 - a). Scattering only, so each bounce's weight is f cos / pdf: a
 //    guided pdf 5% off scales every bounce by ~1/1.05 and the image by ~15%
-//    (a = 0.8), hundreds of standard errors here;
+//    (a = 0.8), hundreds of standard errors here (shown for both methods);
 //  - on the door scene guided and unguided renders agree within their noise.
 #include "tests/render/agreement.h"
 #include "tests/render/furnace_scene.h"
@@ -13,31 +13,39 @@
 namespace qlight::test {
 namespace {
 
-guiding::GuidingSettings highShare(uint32_t seed) {
+guiding::GuidingSettings highShare(guiding::GuideMethod method, uint32_t seed) {
   guiding::GuidingSettings g;
+  g.method = method;
   g.selectProbability = 0.95f;
   g.confidenceUpdates = 0.0f;  // every point guides at the full share at once
   g.pointBudget = 2048;
   g.dartPaths = 8192;
+  g.dqnWarmupSteps = 0;  // and so does the network
+  g.dqnBatch = 256;
   g.seed = seed;
   return g;
 }
 
-class GuidedHighShare : public GpuTest {};
+class GuidedHighShare : public GpuTest,
+                        public ::testing::WithParamInterface<guiding::GuideMethod> {};
 
-TEST_F(GuidedHighShare, WhiteFurnaceIsEmissionOverOneMinusAlbedo) {
+TEST_P(GuidedHighShare, WhiteFurnaceIsEmissionOverOneMinusAlbedo) {
   const float albedo = 0.8f, emission = 0.5f;
   scene::SceneAsset asset = whiteFurnace(albedo, emission);
   render::RenderSettings s = smallSettings(32, 32, 11);
   s.estimator = render::Estimator::BsdfOnly;
   s.maxDepth = 1024;  // Russian roulette ends the paths
   s.russianRoulette = true;
-  s.samplesPerFrame = 2;  // Q learns (noisily, so not uniformly) between the frames
-  auto r = session::renderScene(ctx(), asset, s, 64, 0.0f, highShare(3));
+  s.samplesPerFrame = 2;  // Q (or the network) learns, noisily, between the frames
+  auto r = session::renderScene(ctx(), asset, s, 64, 0.0f, highShare(GetParam(), 3));
   EXPECT_EQ(r.stats.counters.invalidSamples, 0u);
-  EXPECT_GT(r.stats.guidingStats.points, 100u);
-  // Most vertices found a point, so most directions were guided.
-  EXPECT_GT(double(r.stats.counters.coveredVertices), 0.8 * double(r.stats.counters.pathVertices));
+  EXPECT_TRUE(r.stats.guided);
+  if (GetParam() == guiding::GuideMethod::Q) {
+    EXPECT_GT(r.stats.guidingStats.points, 100u);
+    // Most vertices found a point, so most directions were guided.
+    EXPECT_GT(double(r.stats.counters.coveredVertices),
+              0.8 * double(r.stats.counters.pathVertices));
+  }
   const double expected = emission / (1.0 - albedo);
   std::vector<double> pixels;
   for (size_t i = 0; i < r.image.rgba.size(); i += 4) pixels.push_back(r.image.rgba[i + 1]);
@@ -49,7 +57,7 @@ TEST_F(GuidedHighShare, WhiteFurnaceIsEmissionOverOneMinusAlbedo) {
   EXPECT_GT(std::abs(wrongPdf - expected), 20.0 * m.standardError());
 }
 
-TEST_F(GuidedHighShare, DoorAgreesWithUnguidedWithinNoise) {
+TEST_P(GuidedHighShare, DoorAgreesWithUnguidedWithinNoise) {
   scene::SceneAsset asset = gltf::loadGltf(assetPath("door_ajar.gltf"));
   AgreementSetup setup;
   setup.size = 32;
@@ -59,7 +67,7 @@ TEST_F(GuidedHighShare, DoorAgreesWithUnguidedWithinNoise) {
       render::RenderSettings s = smallSettings(setup.size, setup.size, seed);
       s.maxDepth = 6;
       s.samplesPerFrame = 2;
-      guiding::GuidingSettings g = highShare(seed);
+      guiding::GuidingSettings g = highShare(GetParam(), seed);
       g.enabled = guided;
       auto r = session::renderScene(ctx(), asset, s, 16, 0.0f, g);
       EXPECT_EQ(r.stats.counters.invalidSamples, 0u);
@@ -69,6 +77,12 @@ TEST_F(GuidedHighShare, DoorAgreesWithUnguidedWithinNoise) {
   expectAgree(regionMeans(setup, with(true), 300), regionMeans(setup, with(false), 400),
               "door, guided share 0.95");
 }
+
+INSTANTIATE_TEST_SUITE_P(Methods, GuidedHighShare,
+                         ::testing::Values(guiding::GuideMethod::Q, guiding::GuideMethod::Dqn),
+                         [](const auto& info) {
+                           return info.param == guiding::GuideMethod::Q ? "QTables" : "DeepQ";
+                         });
 
 }  // namespace
 }  // namespace qlight::test
