@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
 #include <random>
 
 #include "shaders/shared/guiding_types.h"
@@ -60,6 +61,10 @@ DqnGuide::DqnGuide(const gpu::Context& ctx, const GuidingSettings& settings,
   records_.upload<shared::DqnRecord>(ctx, none);
   counter_.upload<uint32_t>(ctx, std::vector<uint32_t>(4, 0));
   upload();
+  if (settings.target == LearningTarget::TdStep)
+    std::fprintf(stderr,
+                 "qlight: warning: the deep Q network learns from returns; the TD target "
+                 "(--learning-target td) applies to the Q tables only\n");
 }
 
 std::vector<float> DqnGuide::initialWeights(shared::DqnShape s, uint32_t seed) {
