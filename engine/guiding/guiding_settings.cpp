@@ -9,8 +9,33 @@
 #include "shaders/shared/strata.h"
 
 namespace qlight::guiding {
+namespace {
 
-void validateDqn(const GuidingSettings& s);
+// The deep Q network's settings (GuideMethod::Dqn), each with its own message.
+void validateDqn(const GuidingSettings& s) {
+  if (s.dqnWidth < 4 || s.dqnWidth > shared::kDqnMaxWidth || s.dqnWidth % 4 != 0)
+    throw std::invalid_argument("network width must be a multiple of 4 in 4.." +
+                                std::to_string(shared::kDqnMaxWidth));
+  if (s.dqnHidden < 1 || s.dqnHidden > shared::kDqnMaxHidden)
+    throw std::invalid_argument("hidden layers must be 1.." +
+                                std::to_string(shared::kDqnMaxHidden));
+  if (s.dqnBins < 1 || s.dqnBins > shared::kDqnMaxBins)
+    throw std::invalid_argument("one-blob bins must be 1.." + std::to_string(shared::kDqnMaxBins));
+  if (s.dqnBatch < 1 || s.dqnBatch > 65536) throw std::invalid_argument("batch must be 1..65536");
+  if (s.dqnStepsPerFrame > 64)
+    throw std::invalid_argument("training steps per frame must be 0..64");
+  if (!std::isfinite(s.dqnLearningRate) || s.dqnLearningRate <= 0 || s.dqnLearningRate > 1)
+    throw std::invalid_argument("network learning rate must be in (0, 1]");
+  if (s.dqnTargetInterval < 1 || s.dqnTargetInterval > 10000)
+    throw std::invalid_argument("target network interval must be 1..10000 frames");
+  if (s.dqnReplayFrames < 1 || s.dqnReplayFrames > 64)
+    throw std::invalid_argument("replay frames must be 1..64");
+  if (s.dqnWarmupSteps > 100000) throw std::invalid_argument("warm-up steps must be 0..100000");
+  if (!std::isfinite(s.dqnFloorShare) || s.dqnFloorShare <= 0 || s.dqnFloorShare > 10)
+    throw std::invalid_argument("network floor share must be in (0, 10]");
+}
+
+}  // namespace
 
 void validate(const GuidingSettings& s) {
   auto finite = [](float v) { return std::isfinite(v); };
@@ -53,29 +78,6 @@ void validate(const GuidingSettings& s) {
   if (s.method == GuideMethod::Dqn && s.strata() > shared::kDqnMaxOutputs)
     throw std::invalid_argument("deep Q guiding takes at most " +
                                 std::to_string(shared::kDqnMaxOutputs) + " strata");
-}
-
-void validateDqn(const GuidingSettings& s) {
-  if (s.dqnWidth < 4 || s.dqnWidth > shared::kDqnMaxWidth || s.dqnWidth % 4 != 0)
-    throw std::invalid_argument("network width must be a multiple of 4 in 4.." +
-                                std::to_string(shared::kDqnMaxWidth));
-  if (s.dqnHidden < 1 || s.dqnHidden > shared::kDqnMaxHidden)
-    throw std::invalid_argument("hidden layers must be 1.." +
-                                std::to_string(shared::kDqnMaxHidden));
-  if (s.dqnBins < 1 || s.dqnBins > shared::kDqnMaxBins)
-    throw std::invalid_argument("one-blob bins must be 1.." + std::to_string(shared::kDqnMaxBins));
-  if (s.dqnBatch < 1 || s.dqnBatch > 65536) throw std::invalid_argument("batch must be 1..65536");
-  if (s.dqnStepsPerFrame > 64)
-    throw std::invalid_argument("training steps per frame must be 0..64");
-  if (!std::isfinite(s.dqnLearningRate) || s.dqnLearningRate <= 0 || s.dqnLearningRate > 1)
-    throw std::invalid_argument("network learning rate must be in (0, 1]");
-  if (s.dqnTargetInterval < 1 || s.dqnTargetInterval > 10000)
-    throw std::invalid_argument("target network interval must be 1..10000 frames");
-  if (s.dqnReplayFrames < 1 || s.dqnReplayFrames > 64)
-    throw std::invalid_argument("replay frames must be 1..64");
-  if (s.dqnWarmupSteps > 100000) throw std::invalid_argument("warm-up steps must be 0..100000");
-  if (!std::isfinite(s.dqnFloorShare) || s.dqnFloorShare <= 0 || s.dqnFloorShare > 10)
-    throw std::invalid_argument("network floor share must be in (0, 10]");
 }
 
 uint32_t resolvedPointBudget(const GuidingSettings& s, uint64_t pathsPerFrame) {

@@ -23,7 +23,6 @@ QL_CONST uint kDqnMaxWidth = 128u;    // neurons per hidden layer
 QL_CONST uint kDqnMaxHidden = 4u;     // hidden layers
 QL_CONST uint kDqnMaxOutputs = 256u;  // strata
 QL_CONST uint kDqnMaxInputs = 3u * kDqnMaxBins + 4u;
-QL_CONST uint kDqnGroupSize = 64u;  // threads per workgroup of the training passes
 
 // A record's target before its path brought its return back (or when it never does).
 QL_CONST float kDqnNoTarget = -1.0f;
