@@ -104,6 +104,10 @@ void addGuidingOptions(CLI::App& app, guiding::GuidingSettings& g, GuidingCli& c
       ->transform(CLI::CheckedTransformer(pointSetWords(), CLI::ignore_case));
   app.add_option("--light-learning", g.lightLearning, "learned light selection for NEE: on|off")
       ->transform(CLI::CheckedTransformer(onOffWords(), CLI::ignore_case));
+  app.add_option("--nee-min-probability", g.neeMinProbability,
+                 "learned NEE: where a point's shadow rays are blocked, sample a light with this "
+                 "probability only, 0.01..1 (default 0.1; 1: NEE at every vertex)")
+      ->check(finiteRange(ranges::kNeeMinProbability));
   app.add_option("--nee", cli.nee, "next event estimation: on (MIS with scattering) or off")
       ->check(CLI::IsMember({"on", "off"}, CLI::ignore_case));
 }

@@ -76,6 +76,7 @@ inline constexpr Range kExposure{1e-6, 1e6};
 inline constexpr Range kTemporalBlend{0, 0.99};
 inline constexpr Range kHalfLife{0, 1e6};
 inline constexpr Range kForgetOnLightMove{0, 1e3};
+inline constexpr Range kNeeMinProbability{0.01, 1};
 inline constexpr Range kDqnLearningRate{1e-7, 1};
 inline constexpr Range kRenderScale{0.1, 1};
 inline constexpr Range kTargetFrameMs{0, 10000};

@@ -245,6 +245,8 @@ const std::vector<Field>& fields() {
       word(kGuiding, "learning_target", "--learning-target", &G::target, learningTargetWords()),
       boolean(kGuiding, "light_learning", "--light-learning", &G::lightLearning),
       number(kGuiding, "light_mix", "", &G::lightMix, kAnyReal),
+      number(kGuiding, "nee_min_probability", "--nee-min-probability", &G::neeMinProbability,
+             kNeeMinProbability),
       boolean(kGuiding, "learn", "", &G::learn),
       number(kWindow, "render_scale", "--render-scale", &W::renderScale, kRenderScale),
       number(kWindow, "target_frame_ms", "--target-frame-ms", &W::targetFrameMs, kTargetFrameMs),

@@ -74,6 +74,8 @@ GuidingPanelResult drawGuidingSection(guiding::GuidingSettings& s,
   ImGui::SliderFloat("guided share", &s.selectProbability, 0.0f, 0.95f, "%.2f", kClamp);
   ImGui::Checkbox("learned light selection", &s.lightLearning);
   ImGui::SliderFloat("light mix", &s.lightMix, 0.0f, 0.95f, "%.2f", kClamp);
+  ImGui::SliderFloat("NEE where blocked", &s.neeMinProbability, 0.01f, 1.0f,
+                     s.neeMinProbability < 1 ? "%.2f" : "always", kLogClamp);
   if (s.method == guiding::GuideMethod::Dqn) drawNetworkSettings(s);
   r.changed = s.enabled != before.enabled || s.method != before.method ||
               networkChanged(s, before) || s.learn != before.learn || s.target != before.target ||
@@ -81,7 +83,8 @@ GuidingPanelResult drawGuidingSection(guiding::GuidingSettings& s,
               s.alphaMax != before.alphaMax || s.halfLifeFrames != before.halfLifeFrames ||
               s.forgetOnLightMove != before.forgetOnLightMove ||
               s.selectProbability != before.selectProbability ||
-              s.lightLearning != before.lightLearning || s.lightMix != before.lightMix;
+              s.lightLearning != before.lightLearning || s.lightMix != before.lightMix ||
+              s.neeMinProbability != before.neeMinProbability;
   r.regenerate = ImGui::Button("regenerate points");
   ImGui::Text("%u cache points (%u from camera paths)", st.points, st.spawnedPoints);
   ImGui::Text("%u strata, %u lights learned", st.strata, st.lightsLearned);

@@ -55,11 +55,14 @@ struct ScatterMix {
   float guideShare;
 };
 
-// Light selection: by power, mixed with the learned V(point, light) when on.
+// Light selection: by power, mixed with the learned V(point, light) when on; times the
+// probability that the vertex samples a light at all (learned NEE, else 1).
 float lightSelectionPdf(uint point, uint light) {
   float power = lightSelectPdf(light, frame.lightCount);
-  if (!lightLearningOn(point)) return power;
-  return guiding.lightMix * learnedLightProbability(point, light) + (1.0 - guiding.lightMix) * power;
+  float p = neeProbability(point);
+  if (!lightLearningOn(point)) return p * power;
+  return p * (guiding.lightMix * learnedLightProbability(point, light) +
+              (1.0 - guiding.lightMix) * power);
 }
 
 uint chooseLight(uint point, float u, out float selectPdf) {
@@ -72,6 +75,7 @@ uint chooseLight(uint point, float u, out float selectPdf) {
     selectPdf = lightSelectionPdf(point, light);
   } else {
     light = selectLight(u, frame.lightCount, selectPdf);
+    selectPdf *= neeProbability(point);
   }
   return light;
 }
@@ -218,8 +222,24 @@ vec3 originToward(RayOrigins o, Vertex v, vec3 dir) {
 // NEE: one light sample, MIS-weighted against the scatter mixture. The next
 // trace pass traces its shadow ray; with light learning, the light's value
 // target is recorded there if unoccluded, or here (0) when there is no ray.
-void sampleDirectLight(inout PathState st, inout Rng rng, Vertex v, ScatterMix m, RayOrigins o,
-                       bool mis) {
+// With learned NEE the vertex samples a light with its point's probability only (the
+// selection pdf carries it). The coin is shared by kNeeCoinGroup paths of neighbouring ids
+// (neighbours in the queue too: it keeps their order): a shadow ray costs its whole SIMD
+// group, so the skips only pay when the group skips together. Each path still skips with
+// its own probability (unbiased); only which ones skip together is correlated. By path id,
+// not queue slot, so the same seed gives the same image.
+const uint kNeeCoinGroup = 32u;  // a subgroup on most GPUs, 4 of lavapipe's 8-wide ones
+
+float neeCoin(uint path) {
+  uint group = path / kNeeCoinGroup;
+  return uintToUnitFloat(pcgHash(pcgHash(group ^ (frame.frameIndex * 9781u)) ^
+                                 (pc.sampleIndex * 6271u + pc.bounce * 1013u + frame.seed)));
+}
+
+void sampleDirectLight(inout PathState st, inout Rng rng, uint path, Vertex v, ScatterMix m,
+                       RayOrigins o, bool mis) {
+  float neeP = neeProbability(m.point);
+  if (neeP < 1.0 && neeCoin(path) >= neeP) return;
   float selectPdf;
   uint li = chooseLight(m.point, rngNextFloat(rng), selectPdf);
   LightSample ls = sampleLight(v.s.position, rngNext2(rng), li, selectPdf);
@@ -242,7 +262,7 @@ void sampleDirectLight(inout PathState st, inout Rng rng, Vertex v, ScatterMix m
     st.shadowTMax = ls.distance >= kInfinity ? kInfinity : ls.distance * (1.0 - 1e-4);
     st.shadowContribution = contribution;
     st.shadowTarget = target;
-    st.shadowPoint = learnLight ? m.point : kNoCachePoint;
+    st.shadowPoint = learnLight || neeLearningOn(m.point) ? m.point : kNoCachePoint;
     st.shadowLight = li;
   } else if (learnLight) {
     recordVTarget(m.point, li, 0.0);
@@ -328,7 +348,7 @@ bool scatterAt(inout PathState st, inout Rng rng, uint path, Surface s, vec3 le,
   RayOrigins o;
   o.above = offsetRayOriginFrom(s.position, s.geometricNormal, s.extent);
   o.below = offsetRayOriginFrom(s.position, -s.geometricNormal, s.extent);
-  if (sw.nee) sampleDirectLight(st, rng, v, m, o, sw.mis);
+  if (sw.nee) sampleDirectLight(st, rng, path, v, m, o, sw.mis);
   bool alive = sampleScatter(st, rng, v, m, o, sw.learn);
   if (alive) alive = survivesRoulette(st, rng);
   return alive;

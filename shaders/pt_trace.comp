@@ -23,7 +23,8 @@ void main() {
     bool blocked = traceAny(o.xyz, d.xyz, o.w);
     if (!blocked) radianceFlags.xyz += c.xyz;
     uint point = floatBitsToUint(l.z);
-    if (point != kNoCachePoint) recordVTarget(point, floatBitsToUint(l.w), blocked ? 0.0 : l.y);
+    if (lightLearningOn(point)) recordVTarget(point, floatBitsToUint(l.w), blocked ? 0.0 : l.y);
+    recordShadowRay(point, !blocked);
     flags &= ~kPathShadowPending;
   }
   if (extend) {

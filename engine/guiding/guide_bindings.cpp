@@ -19,7 +19,8 @@ void bindGuideBuffers(gpu::PassBuilder& pass, const GuideBuffers& b) {
       .read(QL_BIND_V_CDF, *b.vCdf)
       .write(QL_BIND_V_SUM, *b.vSums)
       .write(QL_BIND_V_COUNT, *b.vCounts)
-      .read(QL_BIND_POINT_UPDATES, *b.pointUpdates);
+      .read(QL_BIND_POINT_UPDATES, *b.pointUpdates)
+      .write(QL_BIND_NEE_COUNTS, *b.neeCounts);
 }
 
 GuidePlaceholders::GuidePlaceholders(const gpu::Context& ctx) {
@@ -37,7 +38,7 @@ GuidePlaceholders::GuidePlaceholders(const gpu::Context& ctx) {
   emptyUints_ = std::make_unique<gpu::BufferView>(ctx, *empty_, VK_FORMAT_R32_UINT);
   emptyUvec4s_ = std::make_unique<gpu::BufferView>(ctx, *empty_, VK_FORMAT_R32G32B32A32_UINT);
   // Written bindings get their own buffers so no two bindings of one pass alias.
-  for (int i = 0; i < 5; ++i) {
+  for (int i = 0; i < 6; ++i) {
     writable_.push_back(
         std::make_unique<gpu::Buffer>(ctx, 64, "guiding.unused" + std::to_string(i)));
     writable_.back()->upload(ctx, zeros.data(), zeros.size());
@@ -54,6 +55,7 @@ GuidePlaceholders::GuidePlaceholders(const gpu::Context& ctx) {
   b.vSums = writable_[3].get();
   b.vCounts = writable_[4].get();
   b.pointUpdates = emptyUints_.get();
+  b.neeCounts = writable_[5].get();
 }
 
 }  // namespace qlight::guiding

@@ -2,7 +2,7 @@
 // the guide block (shaders/shared/bindings.h): the one place in C++ that knows
 // those slots, for the Q guide, the deep Q guide and the null guide alike. (The deep Q
 // guide binds its network to qCdf, its replay ring to qSums and the ring's count to qCounts:
-// push descriptors allow 32 bindings a pass, and the path passes use 31 without it.)
+// push descriptors allow 32 bindings a pass, and the path passes use all 32 without it.)
 #pragma once
 #include <memory>
 #include <vector>
@@ -25,6 +25,7 @@ struct GuideBuffers {
   const gpu::Buffer* vSums = nullptr;
   const gpu::Buffer* vCounts = nullptr;
   const gpu::BufferView* pointUpdates = nullptr;
+  const gpu::Buffer* neeCounts = nullptr;
 };
 
 void bindGuideBuffers(gpu::PassBuilder& pass, const GuideBuffers& b);

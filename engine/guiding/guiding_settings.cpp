@@ -72,6 +72,9 @@ void validate(const GuidingSettings& s) {
         "light mix must be in [0, 0.95] (power-based choice keeps the rest)");
   if (!finite(s.confidenceUpdates) || s.confidenceUpdates < 0 || s.confidenceUpdates > 1e6f)
     throw std::invalid_argument("confidence updates must be in [0, 1e6]");
+  if (!finite(s.neeMinProbability) || s.neeMinProbability < 0.01f || s.neeMinProbability > 1)
+    throw std::invalid_argument(
+        "NEE's minimum probability must be in [0.01, 1] (1: NEE at every vertex)");
   if (s.dartBounces == 0 || s.dartBounces > 64)
     throw std::invalid_argument("dart bounces must be 1..64");
   validateDqn(s);

@@ -94,6 +94,9 @@ struct GuidingSettings {
   LearningTarget target = LearningTarget::Returns;  // --learning-target
   bool lightLearning = true;  // D&K section 4: learned light selection for NEE
   float lightMix = 0.5f;      // share of the learned light choice
+  // Learned NEE: a point whose shadow rays are (nearly) all blocked samples a light with this
+  // probability only, and its NEE counts 1 / p (shared::neeProbabilityOf). 1 turns it off.
+  float neeMinProbability = 0.1f;
   uint32_t seed = 1;
 
   uint32_t strata() const { return rows * cols; }

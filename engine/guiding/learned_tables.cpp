@@ -85,11 +85,14 @@ uint64_t LearnedTable::memoryBytes() const {
 }
 
 uint64_t LearnedTables::memoryBytes() const {
-  return q_.memoryBytes() + v_.memoryBytes() + pointUpdates_->size();
+  return q_.memoryBytes() + v_.memoryBytes() + pointUpdates_->size() + neeCounts_->size();
 }
 
 LearnedTables::LearnedTables(const gpu::Context& ctx)
-    : ctx_(ctx), update_(ctx, "q_update"), treeUpdate_(ctx, "q_tree_update") {
+    : ctx_(ctx),
+      update_(ctx, "q_update"),
+      treeUpdate_(ctx, "q_tree_update"),
+      neeUpdate_(ctx, "nee_update") {
   placeholderChildren_ = makeTableBuffer(ctx_, 16, "guiding.q.noChildren");
   placeholderChildren_->upload(ctx_, std::vector<uint32_t>(4, 0).data(), 16);
   placeholderChildrenView_ =
@@ -107,6 +110,9 @@ void LearnedTables::allocate(uint32_t slots, const GuidingSettings& settings, ui
     pointUpdates_ = makeTableBuffer(ctx_, uint64_t(slots) * 4, "guiding.pointUpdates");
     pointUpdatesView_ = std::make_unique<gpu::BufferView>(ctx_, *pointUpdates_, VK_FORMAT_R32_UINT);
   }
+  const uint64_t neeBytes = std::max<uint64_t>(uint64_t(slots) * shared::kNeeWordsPerPoint * 4, 16);
+  if (!neeCounts_ || neeCounts_->size() < neeBytes)
+    neeCounts_ = std::make_unique<gpu::Buffer>(ctx_, neeBytes, "guiding.neeCounts");
 }
 
 void LearnedTables::reset(const GuidingSettings& settings) {
@@ -116,6 +122,7 @@ void LearnedTables::reset(const GuidingSettings& settings) {
     gpu::PassRecorder rec(ctx_, cmd);
     q_.recordReset(rec, settings.initialQ, 0, slots_);
     rec.fill("guiding.reset", *pointUpdates_, 0);
+    rec.fill("guiding.reset", *neeCounts_, 0);  // no rays yet: NEE at every vertex
     // Light values start at the floor: until a light has shown a contribution at a point,
     // NEE picks it by power (the mixture), not uniformly among all lights.
     v_.recordReset(rec, settings.qFloor, 0, slots_);
@@ -132,6 +139,8 @@ void LearnedTables::recordResetRows(gpu::PassRecorder& rec, std::span<const uint
     q_.recordReset(rec, settings.initialQ, slot, 1);
     if (lights_ > 0) v_.recordReset(rec, settings.qFloor, slot, 1);
     rec.fill("guiding.reset", *pointUpdates_, 0, uint64_t(slot) * 4, 4);
+    constexpr uint64_t kNeeBytes = shared::kNeeWordsPerPoint * 4;
+    rec.fill("guiding.reset", *neeCounts_, 0, uint64_t(slot) * kNeeBytes, kNeeBytes);
   }
   recordUpdate(rec, "guiding.q_cdf", q_, rows, true, true, settings);
   if (lights_ > 0) recordUpdate(rec, "guiding.v_cdf", v_, rows, false, true, settings);
@@ -183,10 +192,26 @@ void LearnedTables::recordUpdate(gpu::PassRecorder& rec, const char* name,
   pass.dispatch(std::min(groups, kMaxGroupsX), (groups + kMaxGroupsX - 1) / kMaxGroupsX);
 }
 
+void LearnedTables::recordNeeUpdate(gpu::PassRecorder& rec, uint32_t rows, float kept) {
+  if (rows == 0) return;
+  shared::NeeUpdatePush push{};
+  push.rowCount = rows;
+  push.kept = kept;
+  const uint32_t groups = (rows + QL_NEE_UPDATE_GROUP_SIZE - 1) / QL_NEE_UPDATE_GROUP_SIZE;
+  rec.pass("guiding.nee_update", neeUpdate_)
+      .write(QL_NEE_UPDATE_BIND_COUNTS, *neeCounts_)
+      .push(push)
+      .dispatch(std::min(groups, kMaxGroupsX), (groups + kMaxGroupsX - 1) / kMaxGroupsX);
+}
+
 void LearnedTables::recordLearning(gpu::PassRecorder& rec, uint32_t rows,
                                    const GuidingSettings& settings) {
-  clock_ += (settings.halfLifeFrames > 0 ? 1.0 / settings.halfLifeFrames : 0.0) + pendingHalvings_;
+  const double halvings =
+      (settings.halfLifeFrames > 0 ? 1.0 / settings.halfLifeFrames : 0.0) + pendingHalvings_;
+  clock_ += halvings;
   pendingHalvings_ = 0.0f;
+  if (settings.neeMinProbability < 1.0f)
+    recordNeeUpdate(rec, rows, shared::keptAfter(float(halvings)));
   recordUpdate(rec, "guiding.q_update", q_, rows, true, false, settings);
   if (lights_ > 0 && learningPasses_ % kLightUpdateInterval == 0)
     recordUpdate(rec, "guiding.v_update", v_, rows, false, false, settings);
@@ -194,6 +219,7 @@ void LearnedTables::recordLearning(gpu::PassRecorder& rec, uint32_t rows,
 }
 
 void LearnedTables::ageNow(uint32_t rows, const GuidingSettings& settings) {
+  const float kept = shared::keptAfter(pendingHalvings_);
   clock_ += pendingHalvings_;
   pendingHalvings_ = 0.0f;
   // With no targets pending, the pass over every row only ages it and rebuilds its CDF.
@@ -201,6 +227,7 @@ void LearnedTables::ageNow(uint32_t rows, const GuidingSettings& settings) {
     gpu::PassRecorder rec(ctx_, cmd);
     recordUpdate(rec, "guiding.q_age", q_, rows, true, true, settings);
     if (lights_ > 0) recordUpdate(rec, "guiding.v_age", v_, rows, false, true, settings);
+    if (settings.neeMinProbability < 1.0f) recordNeeUpdate(rec, rows, kept);
     rec.finish();
   });
 }
@@ -263,6 +290,18 @@ std::vector<float> LearnedTables::readAllQ() const {
   std::vector<float> q(uint64_t(slots_) * q_.rowLength);
   if (!q.empty()) q_.values->download(ctx_, q.data(), q.size() * 4, 0);
   return q;
+}
+
+std::vector<float> LearnedTables::readNeeProbabilities(float minProbability) const {
+  std::vector<uint32_t> words(uint64_t(slots_) * shared::kNeeWordsPerPoint);
+  if (!words.empty()) neeCounts_->download(ctx_, words.data(), words.size() * 4, 0);
+  std::vector<float> p(slots_);
+  for (uint32_t i = 0; i < slots_; ++i) {
+    float running[2];
+    std::memcpy(running, &words[uint64_t(i) * shared::kNeeWordsPerPoint + 2], sizeof(running));
+    p[i] = shared::neeProbabilityOf(running[0], running[1], minProbability);
+  }
+  return p;
 }
 
 std::vector<uint32_t> LearnedTables::readPointUpdates() const {

@@ -3,7 +3,8 @@
 // lights (Dahm & Keller section 4), each with visit counts, the CDF the path
 // passes sample, and the frame's target sums (64-bit fixed point, so the order
 // of the atomics does not matter); and the Q updates each point has received
-// (its confidence). The learning pass (shaders/q_update.comp: the update and the
+// (its confidence), and the shadow rays each point's NEE traced and those that got through
+// (its learned NEE probability). The learning pass (shaders/q_update.comp: the update and the
 // CDF of each row that received targets) runs after each frame's tracing.
 #pragma once
 #include <memory>
@@ -68,6 +69,12 @@ class LearnedTables {
   const LearnedTable& v() const { return v_; }
   // Read by the path passes as a texel buffer (the confidence of each point).
   const gpu::BufferView& pointUpdatesView() const { return *pointUpdatesView_; }
+  // Learned NEE: each point's shadow rays and those unoccluded (shared::kNeeWordsPerPoint
+  // words a point), counted by the trace pass.
+  const gpu::Buffer& neeCounts() const { return *neeCounts_; }
+  // Each slot's probability of sampling a light (shared::neeProbabilityOf), for tests and the
+  // UI.
+  std::vector<float> readNeeProbabilities(float minProbability) const;
   // The tree children the path passes bind: the Q table's, or a placeholder with strata.
   const gpu::BufferView& childrenView() const {
     return q_.tree() ? *q_.childrenView : *placeholderChildrenView_;
@@ -103,9 +110,11 @@ class LearnedTables {
                     const GuidingSettings& settings);
 
   const gpu::Context& ctx_;
-  gpu::ComputePipeline update_, treeUpdate_;
+  gpu::ComputePipeline update_, treeUpdate_, neeUpdate_;
   LearnedTable q_, v_;
-  std::unique_ptr<gpu::Buffer> pointUpdates_;
+  void recordNeeUpdate(gpu::PassRecorder& rec, uint32_t rows, float kept);
+
+  std::unique_ptr<gpu::Buffer> pointUpdates_, neeCounts_;
   std::unique_ptr<gpu::BufferView> pointUpdatesView_;
   std::unique_ptr<gpu::Buffer> placeholderChildren_;
   std::unique_ptr<gpu::BufferView> placeholderChildrenView_;

@@ -106,6 +106,8 @@ void QGuide::writeUniforms() {
   if (settings_.directions == DirectionModel::Tree) u.flags |= shared::kGuideTree;
   u.treeNodes = settings_.treeNodes;
   if (on && tables_.lights() > 0) u.flags |= shared::kGuideLightLearn;
+  if (on && settings_.neeMinProbability < 1.0f) u.flags |= shared::kGuideNeeLearn;
+  u.neeMinProbability = settings_.neeMinProbability;
   if (settings_.enabled && settings_.spawnFromCamera && count < settings_.pointBudget &&
       generator_.spawning())
     u.flags |= shared::kGuideSpawn;
@@ -139,6 +141,7 @@ void QGuide::bind(gpu::PassBuilder& pass) const {
   b.vSums = tables_.v().sums.get();
   b.vCounts = tables_.v().counts.get();
   b.pointUpdates = &tables_.pointUpdatesView();
+  b.neeCounts = &tables_.neeCounts();
   bindGuideBuffers(pass, b);
 }
 

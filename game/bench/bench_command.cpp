@@ -214,6 +214,7 @@ int runBench(BenchArgs a, const CommonOptions& common) {
         {"tree_split", a.guiding.treeSplitShare},
         {"select_probability", a.guiding.selectProbability},
         {"confidence_updates", a.guiding.confidenceUpdates},
+        {"nee_min_probability", a.guiding.neeMinProbability},
         {"learning_target",
          a.guiding.target == guiding::LearningTarget::Returns ? "returns" : "td"},
         {"alpha_min", a.guiding.alphaMin},

@@ -19,6 +19,8 @@ layout(binding = QL_BIND_POINT_UPDATES) uniform usamplerBuffer uPointUpdates;
 // Direction trees (kGuideTree): QL_BIND_Q_CDF holds the slots' weights (4 a texel, one texel a
 // node), this the slots' children.
 layout(binding = QL_BIND_Q_CHILDREN) uniform usamplerBuffer uQChildren;
+// Learned NEE probability: kNeeWordsPerPoint words a point (shared/guiding_types.h).
+layout(binding = QL_BIND_NEE_COUNTS, scalar) buffer NeeCounts { uint neeCounts[]; };
 // Deep Q (kUseDqn) binds the tables' slots to its own buffers: QL_BIND_Q_CDF holds the
 // network the paths sample from (an RGBA32F view: 4 parameters a texel), QL_BIND_Q_SUM the replay ring (DqnRecord, 8 words each) and
 // QL_BIND_Q_COUNT's first word the count of this frame's records.
@@ -273,6 +275,28 @@ uint sampleLearnedLight(uint point, float u) {
     if (vCdf(base + mid) > target) hi = mid; else lo = mid + 1u;
   }
   return lo;
+}
+
+// --- learned NEE probability (shared/guiding_types.h, neeProbabilityOf) ---
+
+bool neeLearningOn(uint point) {
+  return kUseGuiding && !kUseDqn && (guiding.flags & kGuideNeeLearn) != 0u &&
+         point != kNoCachePoint;
+}
+
+// The probability that a vertex at `point` samples a light (1 where NEE is not learned).
+float neeProbability(uint point) {
+  if (!neeLearningOn(point)) return 1.0;
+  uint w = kNeeWordsPerPoint * point;
+  return neeProbabilityOf(uintBitsToFloat(neeCounts[w + 2u]), uintBitsToFloat(neeCounts[w + 3u]),
+                          guiding.neeMinProbability);
+}
+
+void recordShadowRay(uint point, bool unoccluded) {
+  if (!neeLearningOn(point)) return;
+  uint w = kNeeWordsPerPoint * point;
+  atomicAdd(neeCounts[w], 1u);
+  if (unoccluded) atomicAdd(neeCounts[w + 1u], 1u);
 }
 
 void recordVTarget(uint point, uint light, float target) {

@@ -51,6 +51,7 @@
 #define QL_BIND_V_COUNT 28
 #define QL_BIND_POINT_UPDATES 29  // Q updates each point has received
 #define QL_BIND_Q_CHILDREN 35     // direction trees: each slot's child node (0: a leaf)
+#define QL_BIND_NEE_COUNTS 36     // shadow rays per point, and those unoccluded (guiding_types.h)
 
 // --- guiding darts (guiding_darts.comp): the scene block, and its output ---
 #define QL_BIND_DART_CANDIDATES 30

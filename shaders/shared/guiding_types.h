@@ -32,6 +32,8 @@ QL_CONST uint kGuideLearnReturns = 16u;
 QL_CONST uint kGuideTree = 32u;
 // Directions from the deep Q network at the vertex itself (shared/dqn.h), not from a point.
 QL_CONST uint kGuideDqn = 64u;
+// NEE at a point with the probability its shadow rays have shown they pay (neeProbabilityOf).
+QL_CONST uint kGuideNeeLearn = 128u;
 
 struct GuidingUniforms {
   uint rows;  // strata rows (equal-height zones in cos theta)
@@ -52,8 +54,9 @@ struct GuidingUniforms {
   // Updates per stratum a point needs before it guides at the full share: a
   // point with fewer updates has an unreliable Q and samples mostly by the BSDF.
   float confidenceUpdates;
-  uint treeNodes;  // nodes per point (kGuideTree)
-  uint pad0, pad1, pad2;
+  uint treeNodes;           // nodes per point (kGuideTree)
+  float neeMinProbability;  // kGuideNeeLearn: NEE's probability where no shadow ray got through
+  uint pad1, pad2;
   DqnUniforms dqn;  // the network (kGuideDqn)
 };
 QL_CHECK_SIZE(GuidingUniforms, 144);
@@ -200,6 +203,37 @@ QL_FN float confidenceOf(uint updates, float confidenceUpdates, uint strata) {
   if (confidenceUpdates <= 0.0f) return 1.0f;
   return min(1.0f, float(updates) / (confidenceUpdates * float(strata)));
 }
+
+// --- learned NEE probability (kGuideNeeLearn) ---
+// Where a point's shadow rays are all blocked (a room lit only through a gap), NEE costs a
+// ray and a light sample and adds nothing. Each point counts its shadow rays and those that
+// got through; NEE then runs with probability p, at least minProbability, and the light's
+// selection pdf carries p, so NEE's contribution is divided by it and the MIS weights of
+// both techniques use it: unbiased for any p > 0. p is 1 until the counts say otherwise,
+// and 1 wherever more than 1/kNeeBoost of the rays get through.
+QL_CONST float kNeeBoost = 8.0f;
+// The running counts stop at this many rays, so a point's p follows a light that moves.
+QL_CONST float kNeeWindow = 256.0f;
+
+// Per point, 4 words: this frame's shadow rays and those unoccluded (atomic counts, by the
+// trace pass), then the running counts as floats (by nee_update.comp).
+QL_CONST uint kNeeWordsPerPoint = 4u;
+
+QL_FN float neeProbabilityOf(float rays, float unoccluded, float minProbability) {
+  if (minProbability >= 1.0f) return 1.0f;
+  return clamp(kNeeBoost * (unoccluded + 1.0f) / (rays + 1.0f), minProbability, 1.0f);
+}
+
+// Bindings and push constants of nee_update.comp: one thread per point folds the frame's
+// counts into the running ones.
+#define QL_NEE_UPDATE_BIND_COUNTS 0
+#define QL_NEE_UPDATE_GROUP_SIZE 64
+struct NeeUpdatePush {
+  uint rowCount;
+  float kept;  // share of the running counts kept (tracking's forgetting)
+  uint pad0, pad1;
+};
+QL_CHECK_SIZE(NeeUpdatePush, 16);
 
 QL_FN float updatedQ(float q, float targetSum, uint m, uint visits, float alphaMin, float alphaMax,
                      float qFloor) {
