@@ -55,27 +55,31 @@ struct ScatterMix {
   float guideShare;
 };
 
-// Light selection: by power, mixed with the learned V(point, light) when on; times the
+// Light selection: by power, mixed with the learned V(point, light) when on; times p, the
 // probability that the vertex samples a light at all (learned NEE, else 1).
-float lightSelectionPdf(uint point, uint light) {
+float lightSelectionPdfWith(uint point, uint light, float p) {
   float power = lightSelectPdf(light, frame.lightCount);
-  float p = neeProbability(point);
   if (!lightLearningOn(point)) return p * power;
   return p * (guiding.lightMix * learnedLightProbability(point, light) +
               (1.0 - guiding.lightMix) * power);
 }
 
-uint chooseLight(uint point, float u, out float selectPdf) {
+float lightSelectionPdf(uint point, uint light) {
+  return lightSelectionPdfWith(point, light, neeProbability(point));
+}
+
+// neeP: the point's neeProbability, read once per vertex.
+uint chooseLight(uint point, float neeP, float u, out float selectPdf) {
   uint light;
   if (lightLearningOn(point)) {
     float beta = guiding.lightMix;
     float ignored;
     light = u < beta ? sampleLearnedLight(point, u / beta)
                      : selectLight((u - beta) / (1.0 - beta), frame.lightCount, ignored);
-    selectPdf = lightSelectionPdf(point, light);
+    selectPdf = lightSelectionPdfWith(point, light, neeP);
   } else {
     light = selectLight(u, frame.lightCount, selectPdf);
-    selectPdf *= neeProbability(point);
+    selectPdf *= neeP;
   }
   return light;
 }
@@ -241,7 +245,7 @@ void sampleDirectLight(inout PathState st, inout Rng rng, uint path, Vertex v, S
   float neeP = neeProbability(m.point);
   if (neeP < 1.0 && neeCoin(path) >= neeP) return;
   float selectPdf;
-  uint li = chooseLight(m.point, rngNextFloat(rng), selectPdf);
+  uint li = chooseLight(m.point, neeP, rngNextFloat(rng), selectPdf);
   LightSample ls = sampleLight(v.s.position, rngNext2(rng), li, selectPdf);
   vec3 wi = localFromWorld(v.tf, ls.direction);
   bool valid = ls.pdf > 0.0 && scatterable(v, wi, ls.direction) && ls.radiance != vec3(0.0);

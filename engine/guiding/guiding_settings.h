@@ -100,6 +100,7 @@ struct GuidingSettings {
   uint32_t seed = 1;
 
   uint32_t strata() const { return rows * cols; }
+  bool learnsNee() const { return neeMinProbability < 1.0f; }
   // Q entries per point: strata, or a tree's 4 slots a node.
   uint32_t entriesPerPoint() const {
     return directions == DirectionModel::Tree ? 4 * treeNodes : strata();

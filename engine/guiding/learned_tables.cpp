@@ -210,8 +210,7 @@ void LearnedTables::recordLearning(gpu::PassRecorder& rec, uint32_t rows,
       (settings.halfLifeFrames > 0 ? 1.0 / settings.halfLifeFrames : 0.0) + pendingHalvings_;
   clock_ += halvings;
   pendingHalvings_ = 0.0f;
-  if (settings.neeMinProbability < 1.0f)
-    recordNeeUpdate(rec, rows, shared::keptAfter(float(halvings)));
+  if (settings.learnsNee()) recordNeeUpdate(rec, rows, shared::keptAfter(float(halvings)));
   recordUpdate(rec, "guiding.q_update", q_, rows, true, false, settings);
   if (lights_ > 0 && learningPasses_ % kLightUpdateInterval == 0)
     recordUpdate(rec, "guiding.v_update", v_, rows, false, false, settings);
@@ -227,7 +226,7 @@ void LearnedTables::ageNow(uint32_t rows, const GuidingSettings& settings) {
     gpu::PassRecorder rec(ctx_, cmd);
     recordUpdate(rec, "guiding.q_age", q_, rows, true, true, settings);
     if (lights_ > 0) recordUpdate(rec, "guiding.v_age", v_, rows, false, true, settings);
-    if (settings.neeMinProbability < 1.0f) recordNeeUpdate(rec, rows, kept);
+    if (settings.learnsNee()) recordNeeUpdate(rec, rows, kept);
     rec.finish();
   });
 }

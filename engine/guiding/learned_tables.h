@@ -108,12 +108,12 @@ class LearnedTables {
   void recordUpdate(gpu::PassRecorder& rec, const char* name, const LearnedTable& table,
                     uint32_t rows, bool cosineWeights, bool everyRow,
                     const GuidingSettings& settings);
+  // The learned NEE counts: the frame's folded into the running ones, which keep `kept`.
+  void recordNeeUpdate(gpu::PassRecorder& rec, uint32_t rows, float kept);
 
   const gpu::Context& ctx_;
   gpu::ComputePipeline update_, treeUpdate_, neeUpdate_;
   LearnedTable q_, v_;
-  void recordNeeUpdate(gpu::PassRecorder& rec, uint32_t rows, float kept);
-
   std::unique_ptr<gpu::Buffer> pointUpdates_, neeCounts_;
   std::unique_ptr<gpu::BufferView> pointUpdatesView_;
   std::unique_ptr<gpu::Buffer> placeholderChildren_;

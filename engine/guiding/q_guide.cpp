@@ -106,7 +106,7 @@ void QGuide::writeUniforms() {
   if (settings_.directions == DirectionModel::Tree) u.flags |= shared::kGuideTree;
   u.treeNodes = settings_.treeNodes;
   if (on && tables_.lights() > 0) u.flags |= shared::kGuideLightLearn;
-  if (on && settings_.neeMinProbability < 1.0f) u.flags |= shared::kGuideNeeLearn;
+  if (on && settings_.learnsNee()) u.flags |= shared::kGuideNeeLearn;
   u.neeMinProbability = settings_.neeMinProbability;
   if (settings_.enabled && settings_.spawnFromCamera && count < settings_.pointBudget &&
       generator_.spawning())
