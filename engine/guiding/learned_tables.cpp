@@ -210,7 +210,7 @@ void LearnedTables::recordLearning(gpu::PassRecorder& rec, uint32_t rows,
       (settings.halfLifeFrames > 0 ? 1.0 / settings.halfLifeFrames : 0.0) + pendingHalvings_;
   clock_ += halvings;
   pendingHalvings_ = 0.0f;
-  if (settings.learnsNee()) recordNeeUpdate(rec, rows, shared::keptAfter(float(halvings)));
+  if (settings.learnsNee()) recordNeeUpdate(rec, rows, shared::neeKeptAfter(float(halvings)));
   recordUpdate(rec, "guiding.q_update", q_, rows, true, false, settings);
   if (lights_ > 0 && learningPasses_ % kLightUpdateInterval == 0)
     recordUpdate(rec, "guiding.v_update", v_, rows, false, false, settings);
@@ -218,7 +218,7 @@ void LearnedTables::recordLearning(gpu::PassRecorder& rec, uint32_t rows,
 }
 
 void LearnedTables::ageNow(uint32_t rows, const GuidingSettings& settings) {
-  const float kept = shared::keptAfter(pendingHalvings_);
+  const float neeKept = shared::neeKeptAfter(pendingHalvings_);
   clock_ += pendingHalvings_;
   pendingHalvings_ = 0.0f;
   // With no targets pending, the pass over every row only ages it and rebuilds its CDF.
@@ -226,7 +226,7 @@ void LearnedTables::ageNow(uint32_t rows, const GuidingSettings& settings) {
     gpu::PassRecorder rec(ctx_, cmd);
     recordUpdate(rec, "guiding.q_age", q_, rows, true, true, settings);
     if (lights_ > 0) recordUpdate(rec, "guiding.v_age", v_, rows, false, true, settings);
-    if (settings.learnsNee()) recordNeeUpdate(rec, rows, kept);
+    if (settings.learnsNee()) recordNeeUpdate(rec, rows, neeKept);
     rec.finish();
   });
 }

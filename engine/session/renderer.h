@@ -65,6 +65,7 @@ class Renderer {
   void setGuiding(const guiding::GuidingSettings& settings, bool regenerate = false);
   // Null when guiding was never switched on.
   const guiding::QGuide* guide() const { return qGuide_.get(); }
+  guiding::QGuide* guide() { return qGuide_.get(); }
   // The deep Q guide while it is the method in use, else null.
   const guiding::DqnGuide* dqnGuide() const { return dqnActive_ ? dqnGuide_.get() : nullptr; }
   guiding::DqnGuide* dqnGuide() { return dqnActive_ ? dqnGuide_.get() : nullptr; }

@@ -215,6 +215,13 @@ QL_CONST float kNeeBoost = 8.0f;
 // The running counts stop at this many rays, so a point's p follows a light that moves.
 QL_CONST float kNeeWindow = 256.0f;
 
+// What a point's light is in view of changes faster than where its light comes from: a light
+// that moves a little can leave or enter a point's view through a gap. So the counts forget
+// this many times faster than tracking's Q (a jump forgets them all, and a point that was in
+// the dark does not keep skipping NEE at a light that has come into view).
+QL_CONST float kNeeForgetScale = 8.0f;
+QL_FN float neeKeptAfter(float halvings) { return keptAfter(kNeeForgetScale * halvings); }
+
 // Per point, 4 words: this frame's shadow rays and those unoccluded (atomic counts, by the
 // trace pass), then the running counts as floats (by nee_update.comp).
 QL_CONST uint kNeeWordsPerPoint = 4u;

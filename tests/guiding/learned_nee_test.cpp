@@ -117,6 +117,26 @@ TEST_F(LearnedNee, PointsBehindTheScreenSkipMostShadowRays) {
   EXPECT_LT(learned, 0.5 * always);
 }
 
+// A light that moves can come into the view of points that were in the dark: the counts
+// forget kNeeForgetScale times faster than tracking's Q, so a move that halves Q's counts
+// once leaves at most 1/256 of the window, too few rays to keep any point under p = 1.
+TEST_F(LearnedNee, ALightMoveSendsEveryPointBackToNee) {
+  const scene::SceneAsset asset = slitScene(1.2f);
+  guiding::GuidingSettings g = learnedNee(0.1f, 6);
+  g.forgetOnLightMove = 4.0f;  // halvings per scene radius a light moves
+  session::Renderer renderer(ctx(), asset, slitSettings(6), g);
+  for (int f = 0; f < 16; ++f) renderer.renderFrame(0.0f);
+  auto pointsUnderOne = [&] {
+    const std::vector<float> p = renderer.guide()->tables().readNeeProbabilities(0.1f);
+    const uint32_t points = renderer.guide()->stats().points;
+    return uint32_t(std::count_if(p.begin(), p.begin() + points, [](float v) { return v < 1.0f; }));
+  };
+  const uint32_t before = pointsUnderOne();
+  EXPECT_GT(before, renderer.guide()->stats().points / 8) << "the dark floor learned p < 1";
+  renderer.guide()->noteLightMotion(0.25f);  // a quarter of the radius: one halving of Q's
+  EXPECT_EQ(pointsUnderOne(), 0u) << before << " points were under 1 before the move";
+}
+
 TEST_F(LearnedNee, RendersAgreeWithNeeAtEveryVertex) {
   const scene::SceneAsset asset = slitScene(0.4f);  // 36 cm of floor around the strip
   AgreementSetup setup;
