@@ -204,13 +204,21 @@ void LearnedTables::recordNeeUpdate(gpu::PassRecorder& rec, uint32_t rows, float
       .dispatch(std::min(groups, kMaxGroupsX), (groups + kMaxGroupsX - 1) / kMaxGroupsX);
 }
 
+float LearnedTables::takeNeeKept(double halfLifeHalvings) {
+  const float kept =
+      shared::keptAfter(float(shared::kNeeForgetScale * halfLifeHalvings) + pendingNeeHalvings_);
+  pendingNeeHalvings_ = 0.0f;
+  return kept;
+}
+
 void LearnedTables::recordLearning(gpu::PassRecorder& rec, uint32_t rows,
                                    const GuidingSettings& settings) {
-  const double halvings =
-      (settings.halfLifeFrames > 0 ? 1.0 / settings.halfLifeFrames : 0.0) + pendingHalvings_;
+  const double halfLife = settings.halfLifeFrames > 0 ? 1.0 / settings.halfLifeFrames : 0.0;
+  const double halvings = halfLife + pendingHalvings_;
   clock_ += halvings;
   pendingHalvings_ = 0.0f;
-  if (settings.learnsNee()) recordNeeUpdate(rec, rows, shared::neeKeptAfter(float(halvings)));
+  const float neeKept = takeNeeKept(halfLife);
+  if (settings.learnsNee()) recordNeeUpdate(rec, rows, neeKept);
   recordUpdate(rec, "guiding.q_update", q_, rows, true, false, settings);
   if (lights_ > 0 && learningPasses_ % kLightUpdateInterval == 0)
     recordUpdate(rec, "guiding.v_update", v_, rows, false, false, settings);
@@ -218,14 +226,17 @@ void LearnedTables::recordLearning(gpu::PassRecorder& rec, uint32_t rows,
 }
 
 void LearnedTables::ageNow(uint32_t rows, const GuidingSettings& settings) {
-  const float neeKept = shared::neeKeptAfter(pendingHalvings_);
+  const bool ageQ = pendingHalvings_ > 0.0f;
+  const float neeKept = takeNeeKept(0.0);
   clock_ += pendingHalvings_;
   pendingHalvings_ = 0.0f;
   // With no targets pending, the pass over every row only ages it and rebuilds its CDF.
   ctx_.submitAndWait([&](VkCommandBuffer cmd) {
     gpu::PassRecorder rec(ctx_, cmd);
-    recordUpdate(rec, "guiding.q_age", q_, rows, true, true, settings);
-    if (lights_ > 0) recordUpdate(rec, "guiding.v_age", v_, rows, false, true, settings);
+    if (ageQ) {
+      recordUpdate(rec, "guiding.q_age", q_, rows, true, true, settings);
+      if (lights_ > 0) recordUpdate(rec, "guiding.v_age", v_, rows, false, true, settings);
+    }
     if (settings.learnsNee()) recordNeeUpdate(rec, rows, neeKept);
     rec.finish();
   });

@@ -59,8 +59,13 @@ class LearnedTables {
   // half-life's 1 / halfLifeFrames a pass).
   void forget(float halvings) { pendingHalvings_ += halvings; }
   float pendingHalvings() const { return pendingHalvings_; }
-  // Applies the pending halvings to the first `rows` rows now (their counts and CDFs), in a
-  // submission of its own: for a jump, before the frame's paths read the confidence.
+  // Learned NEE's counts: `halvings` more at the next learning pass (on top of
+  // kNeeForgetScale times the half-life's).
+  void forgetNee(float halvings) { pendingNeeHalvings_ += halvings; }
+  float pendingNeeHalvings() const { return pendingNeeHalvings_; }
+  // Applies the pending halvings to the first `rows` rows now (their counts and CDFs, and
+  // the NEE counts), in a submission of its own: for a jump, before the frame's paths read
+  // the confidence and NEE's probability.
   void ageNow(uint32_t rows, const GuidingSettings& settings);
 
   uint32_t lights() const { return lights_; }
@@ -123,7 +128,10 @@ class LearnedTables {
   // The forgetting clock, in halvings: a row's counts are aged by the clock's advance since
   // its last update (2^-(clock - its clock)), lazily, when it next receives targets.
   double clock_ = 0.0;
-  float pendingHalvings_ = 0.0f;
+  float pendingHalvings_ = 0.0f, pendingNeeHalvings_ = 0.0f;
+  // The NEE counts' share kept after the half-life's `halfLifeHalvings` and the pending ones;
+  // clears those.
+  float takeNeeKept(double halfLifeHalvings);
 };
 
 }  // namespace qlight::guiding

@@ -154,7 +154,9 @@ render::GuideFeatures QGuide::features() const {
 
 void QGuide::noteLightMotion(float share) {
   tables_.forget(share * settings_.forgetOnLightMove);
-  if (points_ && tables_.pendingHalvings() >= 1.0f) tables_.ageNow(points_->slotEnd(), settings_);
+  tables_.forgetNee(share * shared::kNeeHalvingsPerRadius);
+  if (points_ && (tables_.pendingHalvings() >= 1.0f || tables_.pendingNeeHalvings() >= 1.0f))
+    tables_.ageNow(points_->slotEnd(), settings_);
 }
 
 void QGuide::recordLearning(gpu::PassRecorder& rec) {

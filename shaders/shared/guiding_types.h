@@ -217,10 +217,12 @@ QL_CONST float kNeeWindow = 256.0f;
 
 // What a point's light is in view of changes faster than where its light comes from: a light
 // that moves a little can leave or enter a point's view through a gap. So the counts forget
-// this many times faster than tracking's Q (a jump forgets them all, and a point that was in
-// the dark does not keep skipping NEE at a light that has come into view).
+// kNeeForgetScale times faster than tracking's half-life, and kNeeHalvingsPerRadius times
+// per scene radius a light moves whatever tracking's own rate (with tracking off too): a jump
+// forgets them all, and a point that was in the dark does not keep skipping NEE at a light
+// that has come into view.
 QL_CONST float kNeeForgetScale = 8.0f;
-QL_FN float neeKeptAfter(float halvings) { return keptAfter(kNeeForgetScale * halvings); }
+QL_CONST float kNeeHalvingsPerRadius = 32.0f;  // 8x the demo's forgetOnLightMove
 
 // Per point, 4 words: this frame's shadow rays and those unoccluded (atomic counts, by the
 // trace pass), then the running counts as floats (by nee_update.comp).

@@ -118,12 +118,15 @@ TEST_F(LearnedNee, PointsBehindTheScreenSkipMostShadowRays) {
 }
 
 // A light that moves can come into the view of points that were in the dark: the counts
-// forget kNeeForgetScale times faster than tracking's Q, so a move that halves Q's counts
-// once leaves at most 1/256 of the window, too few rays to keep any point under p = 1.
-TEST_F(LearnedNee, ALightMoveSendsEveryPointBackToNee) {
+// forget kNeeHalvingsPerRadius times per scene radius a light moves, with tracking's
+// forgetting on or off, so a move of a quarter radius leaves at most 1/256 of the window, too
+// few rays to keep any point under p = 1.
+class LearnedNeeAfterALightMove : public GpuTest, public ::testing::WithParamInterface<float> {};
+
+TEST_P(LearnedNeeAfterALightMove, SendsEveryPointBackToNee) {
   const scene::SceneAsset asset = slitScene(1.2f);
   guiding::GuidingSettings g = learnedNee(0.1f, 6);
-  g.forgetOnLightMove = 4.0f;  // halvings per scene radius a light moves
+  g.forgetOnLightMove = GetParam();  // tracking's halvings per scene radius a light moves
   session::Renderer renderer(ctx(), asset, slitSettings(6), g);
   for (int f = 0; f < 16; ++f) renderer.renderFrame(0.0f);
   auto pointsUnderOne = [&] {
@@ -133,9 +136,11 @@ TEST_F(LearnedNee, ALightMoveSendsEveryPointBackToNee) {
   };
   const uint32_t before = pointsUnderOne();
   EXPECT_GT(before, renderer.guide()->stats().points / 8) << "the dark floor learned p < 1";
-  renderer.guide()->noteLightMotion(0.25f);  // a quarter of the radius: one halving of Q's
+  renderer.guide()->noteLightMotion(0.25f);
   EXPECT_EQ(pointsUnderOne(), 0u) << before << " points were under 1 before the move";
 }
+
+INSTANTIATE_TEST_SUITE_P(TrackingOnAndOff, LearnedNeeAfterALightMove, ::testing::Values(4.0f, 0.0f));
 
 TEST_F(LearnedNee, RendersAgreeWithNeeAtEveryVertex) {
   const scene::SceneAsset asset = slitScene(0.4f);  // 36 cm of floor around the strip
