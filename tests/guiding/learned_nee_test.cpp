@@ -140,7 +140,8 @@ TEST_P(LearnedNeeAfterALightMove, SendsEveryPointBackToNee) {
   EXPECT_EQ(pointsUnderOne(), 0u) << before << " points were under 1 before the move";
 }
 
-INSTANTIATE_TEST_SUITE_P(TrackingOnAndOff, LearnedNeeAfterALightMove, ::testing::Values(4.0f, 0.0f));
+INSTANTIATE_TEST_SUITE_P(TrackingOnAndOff, LearnedNeeAfterALightMove,
+                         ::testing::Values(4.0f, 0.0f));
 
 TEST_F(LearnedNee, RendersAgreeWithNeeAtEveryVertex) {
   const scene::SceneAsset asset = slitScene(0.4f);  // 36 cm of floor around the strip
