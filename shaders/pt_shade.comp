@@ -20,7 +20,8 @@ struct Switches {
   bool emitterHits;  // scattered rays that reach an emitter count
   bool mis;          // both, weighted by the power heuristic
   bool learn;        // record Q-learning targets
-  bool returns;      // ... from returns (include/learning_returns.glsl), else D&K's TD target
+  bool returns;      // ... from returns (include/learning_returns.glsl)
+  bool learnTd;      // ... else from D&K's one-step TD target
   bool guide;        // sample from the learned distributions
   bool usePoints;    // look up the vertex's cache point (for any of the above, or to spawn one)
 };
@@ -32,6 +33,7 @@ Switches frameSwitches() {
   sw.mis = (frame.flags & kFlagMis) != 0u && sw.nee && sw.emitterHits;
   sw.learn = (guiding.flags & kGuideLearn) != 0u;
   sw.returns = learningFromReturns();
+  sw.learnTd = kUseTdTarget && sw.learn && !sw.returns;
   sw.guide = (guiding.flags & kGuideSample) != 0u;
   sw.usePoints = kUseGuiding &&
                  (sw.learn || sw.guide || (guiding.flags & (kGuideLightLearn | kGuideSpawn)) != 0u);
@@ -104,7 +106,7 @@ void shadeEscaped(inout PathState st, Switches sw) {
     st.radiance += st.throughput * sky.radiance * w;
     skyLuminance = luminance(sky.radiance);
   }
-  if (kUseGuiding && sw.learn && !sw.returns) recordQTarget(st.prevEntry, skyLuminance);
+  if (kUseGuiding && sw.learnTd) recordQTarget(st.prevEntry, skyLuminance);
 }
 
 Surface hitSurface(PathState st) {
@@ -160,7 +162,7 @@ uint lookupCachePoint(inout PathState st, uint path, Vertex v, vec3 le, Switches
   uint point = sw.usePoints ? findCachePoint(v.s.position, v.s.geometricNormal) : kNoCachePoint;
   if (point != kNoCachePoint) {
     if (pc.bounce < frame.maxDepth) st.covered++;
-    if (sw.learn && !sw.returns && st.prevEntry != kNoCachePoint)
+    if (sw.learnTd && st.prevEntry != kNoCachePoint)
       recordQTarget(st.prevEntry,
                     luminance(le) + scatteredEstimate(point, v.bsdf, v.wo, -st.dir, v.ns));
   } else if (sw.usePoints && pc.bounce == 0u && (guiding.flags & kGuideSpawn) != 0u) {
@@ -285,10 +287,10 @@ bool sampleScatter(inout PathState st, inout Rng rng, Vertex v, ScatterMix m, Ra
   GuidedLookup g;               // and its entry and guided pdf: found once, for the pdf and learning
   g.entry = kNoCachePoint;
   g.pdf = 0.0;
-  bool sampled;
-  if (rngNextFloat(rng) < m.guideShare) {
-    g = sampleGuidedDirection(m.row, rngNext3(rng), pointLocal);
-    sampled = pointLocal.z > 0.0 && g.pdf > 0.0;
+  bool guided = rngNextFloat(rng) < m.guideShare;
+  bool sampled = true;
+  if (guided) {
+    g = drawGuidedDirection(m.row, rngNext3(rng), pointLocal);
     wiWorld = worldFromLocal(m.row.frame, pointLocal);
   } else {
     vec3 local;
@@ -296,8 +298,10 @@ bool sampleScatter(inout PathState st, inout Rng rng, Vertex v, ScatterMix m, Ra
     sampled = bsdfSample(v.bsdf, v.wo, rngNext3(rng), local, bsdfPdfValue);
     wiWorld = worldFromLocal(v.tf, local);
     pointLocal = localFromWorld(m.row.frame, wiWorld);
-    if (m.point != kNoCachePoint && (m.guideShare > 0.0 || learn)) g = guidedLookup(m.row, pointLocal);
   }
+  if (m.point != kNoCachePoint && (m.guideShare > 0.0 || learn))
+    g = guidedLookupAt(m.row, pointLocal, g);
+  if (guided) sampled = pointLocal.z > 0.0 && g.pdf > 0.0;
   vec3 wiLocal = localFromWorld(v.tf, wiWorld);
   float pdf = 0.0;
   // Directions between the shading and the geometric surface are lost.
@@ -376,7 +380,7 @@ void main() {
     vec3 le = addEmission(st, s, sw);
     if (materialUnlit(materialAt(s.material))) {
       // KHR_materials_unlit: emission only, nothing scatters; the path ends.
-      if (kUseGuiding && sw.learn && !sw.returns) recordQTarget(st.prevEntry, luminance(le));
+      if (kUseGuiding && sw.learnTd) recordQTarget(st.prevEntry, luminance(le));
     } else {
       alive = scatterAt(st, rng, path, s, le, sw);
     }

@@ -149,6 +149,8 @@ render::GuideFeatures QGuide::features() const {
   render::GuideFeatures f;
   f.points = settings_.enabled;  // also when no point exists yet: camera paths spawn them
   f.lightLearning = settings_.enabled && points_->count() > 0 && tables_.lights() > 0;
+  f.directionTrees = settings_.directions == DirectionModel::Tree;
+  f.tdTarget = settings_.learn && settings_.target == LearningTarget::TdStep;
   return f;
 }
 

@@ -9,9 +9,11 @@
 namespace qlight::render {
 
 struct GuideFeatures {
-  bool points = false;         // cache points are searched (guided sampling, learning, spawns)
-  bool lightLearning = false;  // learned light selection for NEE
-  bool dqn = false;            // the deep Q network guides instead of the points' tables
+  bool points = false;          // cache points are searched (guided sampling, learning, spawns)
+  bool lightLearning = false;   // learned light selection for NEE
+  bool dqn = false;             // the deep Q network guides instead of the points' tables
+  bool directionTrees = false;  // the points' directions are trees, not strata
+  bool tdTarget = false;        // Q learns D&K's one-step target, not returns
 };
 
 class Guide {

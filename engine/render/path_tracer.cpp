@@ -99,6 +99,8 @@ const gpu::ComputePipeline& PathTracer::specialized(const char* shader, const Gp
   features[shared::kSpecUseGuiding] = guide.points;
   features[shared::kSpecUseLightLearning] = guide.lightLearning;
   features[shared::kSpecUseDqn] = guide.dqn;
+  features[shared::kSpecUseDirectionTrees] = guide.directionTrees;
+  features[shared::kSpecUseTdTarget] = guide.tdTarget;
   return variants_.get(shader, features);
 }
 

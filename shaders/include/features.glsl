@@ -16,3 +16,7 @@ layout(constant_id = QL_SPEC_USE_ENVIRONMENT_MAP) const bool kUseEnvironmentMap 
 layout(constant_id = QL_SPEC_USE_ALPHA_TEST) const bool kUseAlphaTest = true;
 // Deep Q guiding: the network at each vertex instead of the cache points' tables.
 layout(constant_id = QL_SPEC_USE_DQN) const bool kUseDqn = false;
+// Direction trees per point (--directions tree) instead of the strata.
+layout(constant_id = QL_SPEC_USE_DIRECTION_TREES) const bool kUseDirectionTrees = false;
+// D&K's one-step TD target (--learning-target td): its Q lookups at every vertex, else returns.
+layout(constant_id = QL_SPEC_USE_TD_TARGET) const bool kUseTdTarget = false;

@@ -53,7 +53,7 @@ float vCdf(uint i) { return texelFetch(uVCdf, int(i)).x; }
 #include "shared/direction_tree.h"
 
 uint strataCount() { return guiding.rows * guiding.cols; }
-bool treeDirections() { return (guiding.flags & kGuideTree) != 0u; }
+bool treeDirections() { return kUseDirectionTrees && (guiding.flags & kGuideTree) != 0u; }
 
 float pointConfidence(uint point) {
   if (kUseDqn) return guiding.dqn.confidence;  // the network's, from its training steps
@@ -174,8 +174,11 @@ GuidedLookup guidedLookup(GuidedRow r, vec3 local) {
   return g;
 }
 
-// A direction drawn from the point's learned distribution (local: in the point's frame).
-GuidedLookup sampleGuidedDirection(GuidedRow r, vec3 u, out vec3 local) {
+// A direction drawn from the point's learned distribution (local: in the point's frame), in
+// two halves so that one lookup serves a drawn and a BSDF-sampled direction alike (lavapipe
+// runs both sides of the mixture's branch): the draw returns what it knows of the direction's
+// entry (strata: the stratum, its pdf left to the lookup; trees: both), guidedLookupAt the rest.
+GuidedLookup drawGuidedDirection(GuidedRow r, vec3 u, out vec3 local) {
   GuidedLookup g;
   if (treeDirections()) {
     vec2 coords;
@@ -186,9 +189,20 @@ GuidedLookup sampleGuidedDirection(GuidedRow r, vec3 u, out vec3 local) {
   } else {
     uint k = sampleCdfTarget(r.base, strataCount(), u.z * r.total);
     local = sampleStratumCosine(k, u.xy, guiding.rows, guiding.cols);
-    g = stratumLookup(r, k, local.z);
+    g.entry = r.base + k;
+    g.pdf = 0.0;
   }
   return g;
+}
+
+// The entry and guided pdf of `local`: drawn is drawGuidedDirection's result for a drawn
+// direction (its stratum is known exactly, where recomputing it from the direction could
+// round into a neighbour), else drawn.entry is kNoCachePoint.
+GuidedLookup guidedLookupAt(GuidedRow r, vec3 local, GuidedLookup drawn) {
+  if (treeDirections()) return drawn.entry != kNoCachePoint ? drawn : guidedLookup(r, local);
+  uint k = drawn.entry != kNoCachePoint ? drawn.entry - r.base
+                                        : stratumOfDirection(local, guiding.rows, guiding.cols);
+  return stratumLookup(r, k, local.z);
 }
 
 // Q in a direction at a point (strata: its stratum's, recovered from the CDF of

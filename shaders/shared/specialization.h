@@ -16,6 +16,8 @@
 #define QL_SPEC_USE_ENVIRONMENT_MAP 8
 #define QL_SPEC_USE_ALPHA_TEST 9
 #define QL_SPEC_USE_DQN 10
+#define QL_SPEC_USE_DIRECTION_TREES 11
+#define QL_SPEC_USE_TD_TARGET 12
 
 QL_BEGIN
 QL_CONST uint kSpecUseTextures = QL_SPEC_USE_TEXTURES;
@@ -26,7 +28,9 @@ QL_CONST uint kSpecUseVertexExtras = QL_SPEC_USE_VERTEX_EXTRAS;
 QL_CONST uint kSpecUseEnvironmentMap = QL_SPEC_USE_ENVIRONMENT_MAP;
 QL_CONST uint kSpecUseAlphaTest = QL_SPEC_USE_ALPHA_TEST;
 QL_CONST uint kSpecUseDqn = QL_SPEC_USE_DQN;
-QL_CONST uint kSpecPathFeatureCount = QL_SPEC_USE_DQN + 1u;  // values to pass
+QL_CONST uint kSpecUseDirectionTrees = QL_SPEC_USE_DIRECTION_TREES;
+QL_CONST uint kSpecUseTdTarget = QL_SPEC_USE_TD_TARGET;
+QL_CONST uint kSpecPathFeatureCount = QL_SPEC_USE_TD_TARGET + 1u;  // values to pass
 QL_END
 
 #endif

@@ -34,7 +34,7 @@ constexpr float kHalfSize = 32.0f;
 constexpr int kTiles = 32;
 constexpr uint32_t kRows = 8, kCols = 4;  // strata
 
-scene::SceneAsset floorCeilingPointLight() {
+scene::SceneAsset floorCeilingPointLight(float ceilingGlow = 0.0f) {
   scene::SceneAsset s;
   auto lambert = [&](float albedo) {
     scene::MaterialAsset m;
@@ -45,6 +45,7 @@ scene::SceneAsset floorCeilingPointLight() {
     return uint32_t(s.materials.size() - 1);
   };
   const uint32_t floorMat = lambert(kRhoFloor), ceilingMat = lambert(kRhoCeiling);
+  s.materials[ceilingMat].emissive = glm::vec3(ceilingGlow);
   scene::MeshAsset mesh;
   const float step = 2.0f * kHalfSize / kTiles;
   for (int i = 0; i < kTiles; ++i)
@@ -118,8 +119,8 @@ class LearningTarget : public GpuTest {
     uint64_t targets = 0;  // camera-vertex targets in all
   };
 
-  Learned learn(guiding::LearningTarget target, int frames) {
-    scene::SceneAsset asset = floorCeilingPointLight();
+  Learned learn(guiding::LearningTarget target, int frames, float ceilingGlow = 0.0f) {
+    scene::SceneAsset asset = floorCeilingPointLight(ceilingGlow);
     render::RenderSettings s = twoBounces(8);
     guiding::GuidingSettings g;
     g.target = target;
@@ -199,6 +200,16 @@ TEST_F(LearningTarget, OneStepTargetCannotLearnAPointLitCeiling) {
   const shared::TangentFrame frame = shared::frameFromNormal(glm::vec3(0, 1, 0));
   double pole = reference(0, kRows, kCols, frame).mean;
   EXPECT_LT(td.q[0], 0.1 * pole) << "TD learned " << td.q[0] << ", the light gives " << pole;
+}
+
+// What it can learn: with the ceiling glowing at Le, each target of the floor point's pole
+// stratum is Le plus what the ceiling's Q says it scatters (>= 0), so their mean is at least
+// Le; a renderer that recorded no one-step targets would leave Q at its initial value.
+TEST_F(LearningTarget, OneStepTargetLearnsAGlowingCeiling) {
+  constexpr float kGlow = 2.0f;
+  Learned td = learn(guiding::LearningTarget::TdStep, 6, kGlow);
+  EXPECT_GE(td.q[0], 0.99f * kGlow)
+      << "TD learned " << td.q[0] << " where the ceiling glows at " << kGlow;
 }
 
 }  // namespace
