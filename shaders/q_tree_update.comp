@@ -58,6 +58,7 @@ void main() {
   }
   if (targets == 0u && pc.everyRow == 0u) return;
   float kept = keptAfter(pc.clock - rowClocks[row]);
+  float visitsKept = visitsKeptOf(kept);
   rowClocks[row] = pc.clock;
   pointUpdates[row] = cappedUpdates(agedCount(pointUpdates[row], kept), targets, pc.confidenceCap);
 
@@ -70,7 +71,7 @@ void main() {
       uint e = 4u * (first + node) + c;
       if (children[e] != 0u) continue;
       uint m = counts[e];
-      uint n = agedCount(visits[e], kept);
+      uint n = agedCount(visits[e], visitsKept);
       float q = values[e];
       if (m == 0u && n != visits[e]) visits[e] = n;
       if (m > 0u) {

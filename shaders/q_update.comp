@@ -40,6 +40,7 @@ void main() {
   // Tracking: the row's counts age by the forgetting clock's advance since it was last updated
   // (a row without targets is not touched, so it ages when it is next used).
   float kept = keptAfter(pc.clock - rowClocks[row]);
+  float visitsKept = visitsKeptOf(kept);
   rowClocks[row] = pc.clock;
   if (pc.cosineWeights != 0u)
     pointUpdates[row] = cappedUpdates(agedCount(pointUpdates[row], kept), targets, pc.confidenceCap);
@@ -53,7 +54,7 @@ void main() {
   for (uint k = 0u; k < length; ++k) {
     uint e = base + k;
     uint m = counts[e];
-    uint n = agedCount(visits[e], kept);
+    uint n = agedCount(visits[e], visitsKept);
     float q = values[e];
     if (m == 0u && n != visits[e]) visits[e] = n;
     if (m > 0u) {

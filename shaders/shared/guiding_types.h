@@ -177,14 +177,19 @@ QL_FN float retainedAfterUpdates(uint n0, uint m, float alphaMin, float alphaMax
   return keep;
 }
 
-// One entry's update from a frame's m targets summing to targetSum. A
-// non-finite result keeps the old value: NaN or Inf never enters a table.
-// The share of its visit counts (and its point's confidence) a row keeps after the forgetting
+// The share of its point's update count (its confidence) a row keeps after the forgetting
 // clock advanced `halvings` since its last update, and a count after it.
 QL_FN float keptAfter(float halvings) { return halvings > 0.0f ? exp2(-halvings) : 1.0f; }
 QL_FN uint agedCount(uint count, float kept) {
   return kept < 1.0f ? uint(float(count) * kept) : count;
 }
+
+// The share of its visit counts a row keeps: the square of the confidence's, i.e. Q forgets
+// twice as fast. The confidence comes back after 4 updates a stratum; by then Q must hold
+// mostly new targets, or after a light's jump a point guides at full share by what it learned
+// of the old light (tracking study, docs/guiding_log.md: the 6 frames after the jump went from
+// 1.04-1.12x unguided's error to 0.92-1.04x).
+QL_FN float visitsKeptOf(float kept) { return kept * kept; }
 
 // A point's update count stops where its confidence reaches 1: counted beyond, a point that
 // had seen thousands of updates would keep full confidence through a light's jump however
@@ -244,6 +249,8 @@ struct NeeUpdatePush {
 };
 QL_CHECK_SIZE(NeeUpdatePush, 16);
 
+// One entry's update from a frame's m targets summing to targetSum. A
+// non-finite result keeps the old value: NaN or Inf never enters a table.
 QL_FN float updatedQ(float q, float targetSum, uint m, uint visits, float alphaMin, float alphaMax,
                      float qFloor) {
   if (m == 0u) return max(q, qFloor);

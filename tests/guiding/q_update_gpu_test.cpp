@@ -142,9 +142,9 @@ TEST_F(QUpdateGpu, UpdateAndCdfMatchCpuReference) {
 }
 
 // Tracking: a row updated when the forgetting clock reads 3.6 halvings, last updated at 2.0,
-// first ages its visit counts and its point's update count by 2^-1.6, then learns with the
-// aged counts (a higher learning rate); a row without targets keeps its counts (and clock)
-// until it is used.
+// first ages its point's update count by 2^-1.6 and its visit counts by the square of that
+// (Q forgets twice as fast as the confidence), then learns with the aged counts (a higher
+// learning rate); a row without targets keeps its counts (and clock) until it is used.
 TEST_F(QUpdateGpu, CountsAgeByTheClocksAdvanceSinceTheRowsLastUpdate) {
   const uint32_t points = 2, rows = 2, cols = 2, strata = rows * cols, n = points * strata;
   const float aMin = 1e-4f, aMax = 1.0f, qFloor = 1e-4f;
@@ -173,17 +173,18 @@ TEST_F(QUpdateGpu, CountsAgeByTheClocksAdvanceSinceTheRowsLastUpdate) {
   auto gr = br.read<float>(ctx());
   const double keep = std::exp2(double(lastClock) - double(clock));  // 0.33
   auto aged = [&](uint32_t c) { return uint32_t(double(c) * keep); };
+  auto agedVisits = [&](uint32_t c) { return uint32_t(double(c) * keep * keep); };
   EXPECT_EQ(gr[0], clock);
   EXPECT_EQ(gr[1], lastClock) << "a row without targets is not touched";
   EXPECT_EQ(gp[0], aged(900) + 6);
   EXPECT_EQ(gp[1], 900u);
-  for (uint32_t k = 0; k < strata; ++k) EXPECT_EQ(gv[k], aged(visits[k]) + counts[k]) << k;
+  for (uint32_t k = 0; k < strata; ++k) EXPECT_EQ(gv[k], agedVisits(visits[k]) + counts[k]) << k;
   for (uint32_t k = strata; k < n; ++k) EXPECT_EQ(gv[k], visits[k]) << k;
-  // Stratum 0: 4 targets of 3 after 1000 visits aged to 329: the running mean over 333.
-  const double n0 = aged(1000);
+  // Stratum 0: 4 targets of 3 after 1000 visits aged to 108: the running mean over 112.
+  const double n0 = agedVisits(1000);
   EXPECT_NEAR(gq[0], (n0 * 1.0 + 4 * 3.0) / (n0 + 4), 1e-5);
-  // Without the aging the same update would have moved Q about 3x less.
-  EXPECT_GT(gq[0] - 1.0, 2.5 * ((1000.0 + 12.0) / 1004.0 - 1.0));
+  // Without the aging the same update would have moved Q about 9x less.
+  EXPECT_GT(gq[0] - 1.0, 8.0 * ((1000.0 + 12.0) / 1004.0 - 1.0));
   EXPECT_NEAR(gq[2], 2.0f, 1e-6) << "a first visit takes the targets' mean";
   EXPECT_FLOAT_EQ(gq[1], 1.0f);
 }
