@@ -84,10 +84,12 @@ void addGuidingOptions(CLI::App& app, guiding::GuidingSettings& g, GuidingCli& c
   app.add_option("--alpha-min", g.alphaMin, "learning rate floor (keeps tracking moving lights)");
   app.add_option("--alpha-max", g.alphaMax, "learning rate ceiling");
   app.add_option("--half-life", g.halfLifeFrames,
-                 "tracking: frames after which a point's confidence counts half and its Q's visits a quarter (0: never forget)")
+                 "tracking: frames after which a point's confidence counts half and its Q's visits "
+                 "a quarter (0: never forget)")
       ->check(finiteRange(ranges::kHalfLife));
   app.add_option("--forget-on-light-move", g.forgetOnLightMove,
-                 "tracking: halvings of the confidence per scene radius a light moves, twice as many of Q (0: off)")
+                 "tracking: halvings of the confidence per scene radius a light moves, twice as "
+                 "many of Q (0: off)")
       ->check(finiteRange(ranges::kForgetOnLightMove));
   app.add_option("--points", g.pointBudget,
                  "cache point budget (default 0: one point per 8 paths per frame, 256..16384)");
