@@ -188,7 +188,7 @@ QL_FN uint agedCount(uint count, float kept) {
 // twice as fast. The confidence comes back after 4 updates a stratum; by then Q must hold
 // mostly new targets, or after a light's jump a point guides at full share by what it learned
 // of the old light (tracking study, docs/guiding_log.md: the 6 frames after the jump went from
-// 1.04-1.12x unguided's error to 0.92-1.04x).
+// 1.03-1.12x unguided's error to 0.90-1.00x).
 QL_FN float visitsKeptOf(float kept) { return kept * kept; }
 
 // A point's update count stops where its confidence reaches 1: counted beyond, a point that
