@@ -6,7 +6,7 @@ namespace qlight::gpu {
 
 GpuTimer::GpuTimer(const Context& ctx, uint32_t maxPasses) : periodNs_(ctx.timestampPeriodNs()) {
   if (periodNs_ <= 0) return;  // queue without timestamps: timing is off, the rest works
-  capacity_ = maxPasses * 2;
+  capacity_ = maxPasses * kQueriesPerPass;
   VkDevice device = ctx.device();
   VkQueryPoolCreateInfo info{VK_STRUCTURE_TYPE_QUERY_POOL_CREATE_INFO};
   info.queryType = VK_QUERY_TYPE_TIMESTAMP;
@@ -24,15 +24,24 @@ void GpuTimer::reset(VkCommandBuffer cmd) {
   names_.clear();
 }
 
-void GpuTimer::begin(VkCommandBuffer cmd, const std::string& name) {
-  if (!pool_ || used_ + 2 > capacity_) return;
-  names_.push_back(name);
+// Each stamp is followed by a second one whose value is never read. lavapipe, once a
+// render pass has run on its queue (the window's ImGui), takes a timestamp's time when the
+// next timestamp command flushes, not where it stands: alone, every pass would read the
+// few microseconds between its end and the next pass's begin. The follower flushes at once.
+void GpuTimer::stamp(VkCommandBuffer cmd) {
+  vkCmdWriteTimestamp2(cmd, VK_PIPELINE_STAGE_2_ALL_COMMANDS_BIT, pool_, used_++);
   vkCmdWriteTimestamp2(cmd, VK_PIPELINE_STAGE_2_ALL_COMMANDS_BIT, pool_, used_++);
 }
 
+void GpuTimer::begin(VkCommandBuffer cmd, const std::string& name) {
+  if (!pool_ || used_ + kQueriesPerPass > capacity_) return;
+  names_.push_back(name);
+  stamp(cmd);
+}
+
 void GpuTimer::end(VkCommandBuffer cmd) {
-  if (!pool_ || used_ % 2 == 0) return;
-  vkCmdWriteTimestamp2(cmd, VK_PIPELINE_STAGE_2_ALL_COMMANDS_BIT, pool_, used_++);
+  if (!pool_ || used_ % kQueriesPerPass == 0) return;
+  stamp(cmd);
 }
 
 std::map<std::string, double> GpuTimer::collect(const Context& ctx) {
@@ -42,8 +51,8 @@ std::map<std::string, double> GpuTimer::collect(const Context& ctx) {
   QL_VK(vkGetQueryPoolResults(ctx.device(), pool_, 0, used_, ticks.size() * sizeof(uint64_t),
                               ticks.data(), sizeof(uint64_t),
                               VK_QUERY_RESULT_64_BIT | VK_QUERY_RESULT_WAIT_BIT));
-  for (size_t i = 0; i + 1 < ticks.size(); i += 2)
-    ms[names_[i / 2]] += double(ticks[i + 1] - ticks[i]) * periodNs_ * 1e-6;
+  for (size_t i = 0; i + kQueriesPerPass <= ticks.size(); i += kQueriesPerPass)
+    ms[names_[i / kQueriesPerPass]] += double(ticks[i + 2] - ticks[i]) * periodNs_ * 1e-6;
   return ms;
 }
 

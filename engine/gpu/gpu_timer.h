@@ -25,6 +25,9 @@ class GpuTimer {
   std::map<std::string, double> collect(const Context& ctx);
 
  private:
+  static constexpr uint32_t kQueriesPerPass = 4;  // begin and end, each with its follower
+  void stamp(VkCommandBuffer cmd);
+
   Unique<VkQueryPool> pool_;
   uint32_t capacity_ = 0;
   uint32_t used_ = 0;
