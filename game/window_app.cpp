@@ -284,6 +284,7 @@ int WindowApp::run() {
       dynamic_.scale, lowestScale_, dynamic_.targetMs,
       dynamic_.enabled ? "" : ", dynamic resolution off", movingFrames_,
       1e3 * movingSeconds_ / std::max(movingFrames_, 1u));
+  std::printf("qlight demo: GPU ms per frame (last frames): %s\n", passTimesLine(stats_).c_str());
   if (const std::string views = guideViews_.summary(); !views.empty())
     std::printf("qlight demo: guide views: %s\n", views.c_str());
   std::printf("qlight demo: vsync %s (%s presentation), %u swapchains built\n",

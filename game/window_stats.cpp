@@ -1,6 +1,8 @@
 #include "game/window_stats.h"
 
 #include <algorithm>
+#include <cstdio>
+#include <vector>
 
 namespace qlight::game {
 namespace {
@@ -36,6 +38,21 @@ double FrameStats::gpuTotalMs() const {
   double total = 0;
   for (auto& [name, ms] : gpuMs_) total += ms;
   return total;
+}
+
+std::string passTimesLine(const FrameStats& stats) {
+  std::vector<std::pair<std::string, double>> passes(stats.gpuMs().begin(), stats.gpuMs().end());
+  std::sort(passes.begin(), passes.end(),
+            [](const auto& a, const auto& b) { return a.second > b.second; });
+  char buffer[96];
+  std::snprintf(buffer, sizeof buffer, "total %.1f", stats.gpuTotalMs());
+  std::string line = buffer;
+  for (const auto& [name, ms] : passes) {
+    if (ms < 0.5) break;
+    std::snprintf(buffer, sizeof buffer, ", %s %.1f", name.c_str(), ms);
+    line += buffer;
+  }
+  return line;
 }
 
 }  // namespace qlight::game

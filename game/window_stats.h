@@ -35,4 +35,7 @@ class FrameStats {
   std::map<std::string, double> gpuMs_;
 };
 
+// "total T, pass ms, ..." of the smoothed GPU times, passes over 0.5 ms, the slowest first.
+std::string passTimesLine(const FrameStats& stats);
+
 }  // namespace qlight::game
