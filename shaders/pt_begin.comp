@@ -21,19 +21,10 @@ void main() {
   s.prevScatterPdf = 0.0;
   s.radiance = vec3(0.0);
   s.flags = kPathAlive;
-  s.shadowOrigin = vec3(0.0);
-  s.shadowTMax = 0.0;
-  s.shadowDir = vec3(0.0, 0.0, 1.0);
   s.prevPoint = kNoCachePoint;
-  s.shadowContribution = vec3(0.0);
   s.prevEntry = kNoCachePoint;
-  s.hitT = -1.0;
-  s.hitU = s.hitV = 0.0;
-  s.hitInstance = s.hitPrimitive = 0u;
-  s.shadowTarget = 0.0;
-  s.shadowPoint = kNoCachePoint;
-  s.shadowLight = 0u;
-  s.vertices = s.covered = s.rays = s.shadowRays = 0u;
+  s.vertices = s.covered = s.shadowRays = 0u;
+  s.rays = 1u;  // the camera ray (the shade pass counts the rays it makes)
   // A pixel's ray cone: no width at the eye, one pixel's angle of spread.
   s.coneWidth = 0.0;
   s.coneSpread = 2.0 * cam.tanHalfFovY / float(frame.resolution.y);

@@ -1,7 +1,7 @@
 #version 460
 // Wavefront pass 3: shades each queued path's hit at depth pc.bounce, one step
 // per function (main lists them): emission reached by the ray, the vertex's
-// cache point, NEE (its shadow ray is traced by the next trace pass), the next
+// cache point, NEE (its shadow ray traced here), the next
 // direction from the guided/BSDF mixture, Russian roulette, and the survivors
 // queued for the next trace.
 //
@@ -225,9 +225,11 @@ vec3 originToward(RayOrigins o, Vertex v, vec3 dir) {
   return dot(dir, v.s.geometricNormal) > 0.0 ? o.above : o.below;
 }
 
-// NEE: one light sample, MIS-weighted against the scatter mixture. The next
-// trace pass traces its shadow ray; with light learning, the light's value
-// target is recorded there if unoccluded, or here (0) when there is no ray.
+// NEE: one light sample, MIS-weighted against the scatter mixture, and its
+// shadow ray traced here (the path state keeps no shadow ray: each texel it
+// stores costs, on lavapipe, more than the ray's traversal adds to this pass);
+// with light learning, the light's value target is recorded: 0 when occluded
+// or when there is no ray.
 // With learned NEE the vertex samples a light with its point's probability only (the
 // selection pdf carries it). The coin is shared by kNeeCoinGroup paths of neighbouring ids
 // (neighbours in the queue too: it keeps their order): a shadow ray costs its whole SIMD
@@ -260,19 +262,16 @@ void sampleDirectLight(inout PathState st, inout Rng rng, uint path, Vertex v, S
     float w = ls.delta || !mis ? 1.0 : powerHeuristic(1.0, ls.pdf, 1.0, scatterPdf);
     contribution = st.throughput * f * ls.radiance * (w / ls.pdf);
   }
-  bool learnLight = lightLearningOn(m.point);
+  bool unoccluded = false;
   if (contribution != vec3(0.0)) {
-    st.flags |= kPathShadowPending;
-    st.shadowOrigin = originToward(o, v, ls.direction);
-    st.shadowDir = ls.direction;
-    st.shadowTMax = ls.distance >= kInfinity ? kInfinity : ls.distance * (1.0 - 1e-4);
-    st.shadowContribution = contribution;
-    st.shadowTarget = target;
-    st.shadowPoint = learnLight || neeLearningOn(m.point) ? m.point : kNoCachePoint;
-    st.shadowLight = li;
-  } else if (learnLight) {
-    recordVTarget(m.point, li, 0.0);
+    st.rays++;
+    st.shadowRays++;
+    float tMax = ls.distance >= kInfinity ? kInfinity : ls.distance * (1.0 - 1e-4);
+    unoccluded = !traceAny(originToward(o, v, ls.direction), ls.direction, tMax);
+    if (unoccluded) st.radiance += contribution;
+    recordShadowRay(m.point, unoccluded);
   }
+  if (lightLearningOn(m.point)) recordVTarget(m.point, li, unoccluded ? target : 0.0);
 }
 
 // Radians a diffuse bounce adds to a ray cone's spread (a wide lobe: coarse texture levels).
@@ -338,9 +337,9 @@ bool survivesRoulette(inout PathState st, inout Rng rng) {
   return survives;
 }
 
-// Survivors, and paths that still have a shadow ray, go to the next trace.
+// Survivors go to the next trace.
 void enqueueSurvivor(uint path, uint flags) {
-  if ((flags & (kPathAlive | kPathShadowPending)) != 0u)
+  if ((flags & kPathAlive) != 0u)
     queueOut[atomicAdd(queues[(pc.bounce + 1u) & 1u].count, 1u)] = path;
 }
 
@@ -359,14 +358,13 @@ bool scatterAt(inout PathState st, inout Rng rng, uint path, Surface s, vec3 le,
   if (sw.nee) sampleDirectLight(st, rng, path, v, m, o, sw.mis);
   bool alive = sampleScatter(st, rng, v, m, o, sw.learn);
   if (alive) alive = survivesRoulette(st, rng);
+  if (alive) st.rays++;  // the next trace pass traces its ray
   return alive;
 }
 
 void main() {
   uint path = queuedPath(gl_GlobalInvocationID.x);
   if (path == kNoPath) return;
-  // Dead paths are queued for their last shadow ray only: trace has done it.
-  if ((floatBitsToUint(pathTexel(path, kPathTexelRadianceFlags).w) & kPathAlive) == 0u) return;
   PathState st = loadPath(path);
   Rng rng;
   rng.state = st.rng;

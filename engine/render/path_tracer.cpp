@@ -191,8 +191,8 @@ void PathTracer::recordFrame(gpu::PassRecorder& rec, const GpuScene& scene,
   const gpu::ComputePipeline& trace = specialized("pt_trace", scene, guide.features());
   const gpu::ComputePipeline& shade = specialized("pt_shade", scene, guide.features());
   const gpu::ComputePipeline& end = specialized("pt_end", scene, guide.features());
-  // Wavefront: begin, then per bounce trace (shadow + extension rays) and
-  // shade over the live paths only, a last trace for the final shadow rays, end.
+  // Wavefront: begin, then per bounce trace (extension rays) and shade (which
+  // traces its shadow rays) over the live paths only, end.
   for (uint32_t s = 0; s < settings_.samplesPerFrame; ++s) {
     pass("path.begin", begin_, s, 0, 0)
         .write(QL_BIND_QUEUE_OUT, *queueIds_[0])
@@ -205,9 +205,6 @@ void PathTracer::recordFrame(gpu::PassRecorder& rec, const GpuScene& scene,
                  .write(QL_BIND_QUEUE_OUT, *queueIds_[(bounce + 1) & 1]),
              bounce);
     }
-    uint32_t last = settings_.maxDepth + 1;
-    switchQueues(s, last, false);
-    queued(pass("path.trace", trace, s, last, 0), last);  // the last shadow rays
     pass("path.end", end, s, 0, 0)
         .write(QL_BIND_ACCUM, *accum_)
         .write(QL_BIND_STATS, stats_)

@@ -5,7 +5,6 @@
 layout(binding = QL_BIND_PATH_STATE, rgba32ui) uniform uimageBuffer uPaths;
 
 const uint kPathAlive = 1u;          // has an extension ray to trace / a hit to shade
-const uint kPathShadowPending = 2u;  // a shadow ray waits for the next trace pass
 const uint kPathEmitterHit = 4u;     // a scattered ray has reached an emitter
 const uint kPathInvalid = 8u;        // a NaN/Inf appeared (the sample is dropped)
 
@@ -18,20 +17,13 @@ struct PathState {
   float prevScatterPdf;  // pdf of the direction that led to the current hit (0: camera ray)
   vec3 radiance;
   uint flags;
-  vec3 shadowOrigin;
-  float shadowTMax;
-  vec3 shadowDir;
   uint prevPoint;        // cache point of the previous vertex
-  vec3 shadowContribution;
   uint prevEntry;        // its Q entry for the direction taken
   float hitT;            // < 0: the extension ray missed
   float hitU;
   float hitV;
   uint hitInstance;
   uint hitPrimitive;
-  float shadowTarget;    // light-learning target if the shadow ray is unoccluded
-  uint shadowPoint;      // where to record it (kNoCachePoint: nowhere)
-  uint shadowLight;
   uint vertices;         // path length up to the first emitter reached (D&K)
   uint covered;          // vertices that found a cache point
   float coneWidth;       // the ray cone at the origin: its width (world units)
@@ -54,36 +46,31 @@ PathState loadPath(uint path) {
   t = pathTexel(path, kPathTexelDir); s.dir = t.xyz; s.rng = floatBitsToUint(t.w);
   t = pathTexel(path, kPathTexelThroughput); s.throughput = t.xyz; s.prevScatterPdf = t.w;
   t = pathTexel(path, kPathTexelRadianceFlags); s.radiance = t.xyz; s.flags = floatBitsToUint(t.w);
-  t = pathTexel(path, kPathTexelShadowOrigin); s.shadowOrigin = t.xyz; s.shadowTMax = t.w;
-  t = pathTexel(path, kPathTexelShadowDir); s.shadowDir = t.xyz; s.prevPoint = floatBitsToUint(t.w);
-  t = pathTexel(path, kPathTexelShadowContribution);
-  s.shadowContribution = t.xyz; s.prevEntry = floatBitsToUint(t.w);
   t = pathTexel(path, kPathTexelHit);
   s.hitT = t.x; s.hitU = t.y; s.hitV = t.z; s.hitInstance = floatBitsToUint(t.w);
-  t = pathTexel(path, kPathTexelShadowLearning);
-  s.hitPrimitive = floatBitsToUint(t.x); s.shadowTarget = t.y;
-  s.shadowPoint = floatBitsToUint(t.z); s.shadowLight = floatBitsToUint(t.w);
+  s.hitPrimitive = floatBitsToUint(pathTexel(path, kPathTexelHitPrimitive).x);
+  uvec4 links = floatBitsToUint(pathTexel(path, kPathTexelLinks));
+  s.prevPoint = links.x; s.prevEntry = links.y;
   uvec4 c = floatBitsToUint(pathTexel(path, kPathTexelCounters));
   s.vertices = c.x & 0xffffu; s.covered = c.x >> 16u; s.rays = c.z; s.shadowRays = c.w;
   vec2 cone = unpackHalf2x16(c.y); s.coneWidth = cone.x; s.coneSpread = cone.y;
   return s;
 }
 
+// Everything but the hit, which only the trace pass writes (setHit).
 void storePath(uint path, PathState s) {
   setPathTexel(path, kPathTexelOrigin, vec4(s.origin, uintBitsToFloat(s.pixel)));
   setPathTexel(path, kPathTexelDir, vec4(s.dir, uintBitsToFloat(s.rng)));
   setPathTexel(path, kPathTexelThroughput, vec4(s.throughput, s.prevScatterPdf));
   setPathTexel(path, kPathTexelRadianceFlags, vec4(s.radiance, uintBitsToFloat(s.flags)));
-  setPathTexel(path, kPathTexelShadowOrigin, vec4(s.shadowOrigin, s.shadowTMax));
-  setPathTexel(path, kPathTexelShadowDir, vec4(s.shadowDir, uintBitsToFloat(s.prevPoint)));
-  setPathTexel(path, kPathTexelShadowContribution,
-               vec4(s.shadowContribution, uintBitsToFloat(s.prevEntry)));
-  setPathTexel(path, kPathTexelHit, vec4(s.hitT, s.hitU, s.hitV, uintBitsToFloat(s.hitInstance)));
-  setPathTexel(path, kPathTexelShadowLearning,
-               vec4(uintBitsToFloat(s.hitPrimitive), s.shadowTarget, uintBitsToFloat(s.shadowPoint),
-                    uintBitsToFloat(s.shadowLight)));
+  setPathTexel(path, kPathTexelLinks, uintBitsToFloat(uvec4(s.prevPoint, s.prevEntry, 0u, 0u)));
   setPathTexel(path, kPathTexelCounters,
                uintBitsToFloat(uvec4(s.vertices | (s.covered << 16u),
                                      packHalf2x16(vec2(s.coneWidth, s.coneSpread)), s.rays,
                                      s.shadowRays)));
+}
+
+void setHit(uint path, float t, float u, float v, uint instance, uint primitive) {
+  setPathTexel(path, kPathTexelHit, vec4(t, u, v, uintBitsToFloat(instance)));
+  setPathTexel(path, kPathTexelHitPrimitive, uintBitsToFloat(uvec4(primitive, 0u, 0u, 0u)));
 }

@@ -200,7 +200,7 @@ QL_CONST uint kStatCount = 8u;
 struct TracePush {
   uint sampleIndex;  // which of the frame's samples this dispatch takes
   uint bounce;       // path depth of the pass (every live path is at the same depth)
-  uint extend;       // trace: 1 = also trace the extension ray; pt_queue: 1 = a sample starts
+  uint extend;       // pt_queue: 1 = a sample starts (every path queued)
   uint pathCount;
 };
 QL_CHECK_SIZE(TracePush, 16);
@@ -211,23 +211,24 @@ QL_CONST uint kPathGroupSize = QL_PATH_GROUP_SIZE;
 
 // One path's state: kPathStateTexels RGBA32UI texels, packed and unpacked by
 // shaders/include/path_state.glsl. Passes that need only a few fields read
-// and write their texels directly.
-QL_CONST uint kPathTexelOrigin = 0u;              // origin, pixel
-QL_CONST uint kPathTexelDir = 1u;                 // dir, rng
-QL_CONST uint kPathTexelThroughput = 2u;          // throughput, prevScatterPdf
-QL_CONST uint kPathTexelRadianceFlags = 3u;       // radiance, flags
-QL_CONST uint kPathTexelShadowOrigin = 4u;        // shadowOrigin, shadowTMax
-QL_CONST uint kPathTexelShadowDir = 5u;           // shadowDir, prevPoint
-QL_CONST uint kPathTexelShadowContribution = 6u;  // shadowContribution, prevEntry
-QL_CONST uint kPathTexelHit = 7u;                 // hitT, hitU, hitV, hitInstance
-QL_CONST uint kPathTexelShadowLearning = 8u;      // hitPrimitive, shadowTarget, -Point, -Light
+// and write their texels directly. On lavapipe every texel a pass stores is
+// a per-lane, per-component loop (about 2.5 ms a frame at 320x180 for each
+// texel the shade pass writes): the trace pass writes only its two hit texels,
+// and the shade pass traces its shadow ray itself, so no shadow ray waits here.
+QL_CONST uint kPathTexelOrigin = 0u;         // origin, pixel
+QL_CONST uint kPathTexelDir = 1u;            // dir, rng
+QL_CONST uint kPathTexelThroughput = 2u;     // throughput, prevScatterPdf
+QL_CONST uint kPathTexelRadianceFlags = 3u;  // radiance, flags
+QL_CONST uint kPathTexelHit = 4u;            // hitT, hitU, hitV, hitInstance (trace)
+QL_CONST uint kPathTexelHitPrimitive = 5u;   // hitPrimitive, 0, 0, 0 (trace)
+QL_CONST uint kPathTexelLinks = 6u;          // prevPoint, prevEntry, 0, 0
 QL_CONST uint kPathTexelCounters =
-    9u;  // vertices | covered << 16, half2(cone width, cone spread), rays, shadowRays
+    7u;  // vertices | covered << 16, half2(cone width, cone spread), rays, shadowRays
 // Learning from returns (shaders/include/learning_returns.glsl): the last
 // kReturnRecords vertices' Q entry, radiance so far and throughput, a ring.
 QL_CONST uint kReturnRecords = 4u;
 QL_CONST uint kPathTexelReturnRecords =
-    10u;  // entry, luminance(radiance), luminance(throughput), 0
+    8u;  // entry, luminance(radiance), luminance(throughput), 0
 QL_CONST uint kPathStateTexels = kPathTexelReturnRecords + kReturnRecords;
 
 // Per queue (two: the current and the next): its count and the indirect
