@@ -227,8 +227,7 @@ QL_CONST uint kPathTexelCounters =
 // Learning from returns (shaders/include/learning_returns.glsl): the last
 // kReturnRecords vertices' Q entry, radiance so far and throughput, a ring.
 QL_CONST uint kReturnRecords = 4u;
-QL_CONST uint kPathTexelReturnRecords =
-    8u;  // entry, luminance(radiance), luminance(throughput), 0
+QL_CONST uint kPathTexelReturnRecords = 8u;  // entry, luminance(radiance), luminance(throughput), 0
 QL_CONST uint kPathStateTexels = kPathTexelReturnRecords + kReturnRecords;
 
 // Per queue (two: the current and the next): its count and the indirect
