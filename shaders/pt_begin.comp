@@ -15,7 +15,6 @@ void main() {
   s.origin = cam.position;
   s.dir = normalize(cam.forward + ndc.x * cam.tanHalfFovY * cam.aspect * cam.right -
                     ndc.y * cam.tanHalfFovY * cam.up);
-  s.pixel = path;
   s.rng = rng.state;
   s.throughput = vec3(1.0);
   s.prevScatterPdf = 0.0;

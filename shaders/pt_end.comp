@@ -33,8 +33,8 @@ void main() {
     ivec2 pixel = ivec2(path % frame.resolution.x, path / frame.resolution.x);
     imageStore(uAccum, pixel, imageLoad(uAccum, pixel) + vec4(radiance, 1.0));
   }
-  addStat(kStatRays, counters.z);
-  addStat(kStatShadowRays, counters.w);
+  addStat(kStatRays, counters.z & 0xffffu);
+  addStat(kStatShadowRays, counters.z >> 16u);
   addStat(kStatPaths, inside ? 1u : 0u);
   addStat(kStatEmitterHits, (flags & kPathEmitterHit) != 0u ? 1u : 0u);
   addStat(kStatPathVertices, counters.x & 0xffffu);

@@ -10,14 +10,13 @@ const uint kPathInvalid = 8u;        // a NaN/Inf appeared (the sample is droppe
 
 struct PathState {
   vec3 origin;
-  uint pixel;
+  uint prevPoint;        // cache point of the previous vertex
   vec3 dir;
   uint rng;
   vec3 throughput;
   float prevScatterPdf;  // pdf of the direction that led to the current hit (0: camera ray)
   vec3 radiance;
   uint flags;
-  uint prevPoint;        // cache point of the previous vertex
   uint prevEntry;        // its Q entry for the direction taken
   float hitT;            // < 0: the extension ray missed
   float hitU;
@@ -28,7 +27,7 @@ struct PathState {
   uint covered;          // vertices that found a cache point
   float coneWidth;       // the ray cone at the origin: its width (world units)
   float coneSpread;      // and its spread angle (radians), for texture filtering
-  uint rays;
+  uint rays;             // up to 65535 each (2 a bounce at most)
   uint shadowRays;
 };
 
@@ -42,32 +41,30 @@ void setPathTexel(uint path, uint i, vec4 v) {
 PathState loadPath(uint path) {
   PathState s;
   vec4 t;
-  t = pathTexel(path, kPathTexelOrigin); s.origin = t.xyz; s.pixel = floatBitsToUint(t.w);
+  t = pathTexel(path, kPathTexelOrigin); s.origin = t.xyz; s.prevPoint = floatBitsToUint(t.w);
   t = pathTexel(path, kPathTexelDir); s.dir = t.xyz; s.rng = floatBitsToUint(t.w);
   t = pathTexel(path, kPathTexelThroughput); s.throughput = t.xyz; s.prevScatterPdf = t.w;
   t = pathTexel(path, kPathTexelRadianceFlags); s.radiance = t.xyz; s.flags = floatBitsToUint(t.w);
   t = pathTexel(path, kPathTexelHit);
   s.hitT = t.x; s.hitU = t.y; s.hitV = t.z; s.hitInstance = floatBitsToUint(t.w);
   s.hitPrimitive = floatBitsToUint(pathTexel(path, kPathTexelHitPrimitive).x);
-  uvec4 links = floatBitsToUint(pathTexel(path, kPathTexelLinks));
-  s.prevPoint = links.x; s.prevEntry = links.y;
   uvec4 c = floatBitsToUint(pathTexel(path, kPathTexelCounters));
-  s.vertices = c.x & 0xffffu; s.covered = c.x >> 16u; s.rays = c.z; s.shadowRays = c.w;
+  s.vertices = c.x & 0xffffu; s.covered = c.x >> 16u;
+  s.rays = c.z & 0xffffu; s.shadowRays = c.z >> 16u; s.prevEntry = c.w;
   vec2 cone = unpackHalf2x16(c.y); s.coneWidth = cone.x; s.coneSpread = cone.y;
   return s;
 }
 
 // Everything but the hit, which only the trace pass writes (setHit).
 void storePath(uint path, PathState s) {
-  setPathTexel(path, kPathTexelOrigin, vec4(s.origin, uintBitsToFloat(s.pixel)));
+  setPathTexel(path, kPathTexelOrigin, vec4(s.origin, uintBitsToFloat(s.prevPoint)));
   setPathTexel(path, kPathTexelDir, vec4(s.dir, uintBitsToFloat(s.rng)));
   setPathTexel(path, kPathTexelThroughput, vec4(s.throughput, s.prevScatterPdf));
   setPathTexel(path, kPathTexelRadianceFlags, vec4(s.radiance, uintBitsToFloat(s.flags)));
-  setPathTexel(path, kPathTexelLinks, uintBitsToFloat(uvec4(s.prevPoint, s.prevEntry, 0u, 0u)));
   setPathTexel(path, kPathTexelCounters,
                uintBitsToFloat(uvec4(s.vertices | (s.covered << 16u),
-                                     packHalf2x16(vec2(s.coneWidth, s.coneSpread)), s.rays,
-                                     s.shadowRays)));
+                                     packHalf2x16(vec2(s.coneWidth, s.coneSpread)),
+                                     s.rays | (s.shadowRays << 16u), s.prevEntry)));
 }
 
 void setHit(uint path, float t, float u, float v, uint instance, uint primitive) {

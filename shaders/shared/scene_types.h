@@ -215,19 +215,18 @@ QL_CONST uint kPathGroupSize = QL_PATH_GROUP_SIZE;
 // a per-lane, per-component loop (about 2.5 ms a frame at 320x180 for each
 // texel the shade pass writes): the trace pass writes only its two hit texels,
 // and the shade pass traces its shadow ray itself, so no shadow ray waits here.
-QL_CONST uint kPathTexelOrigin = 0u;         // origin, pixel
+QL_CONST uint kPathTexelOrigin = 0u;         // origin, prevPoint
 QL_CONST uint kPathTexelDir = 1u;            // dir, rng
 QL_CONST uint kPathTexelThroughput = 2u;     // throughput, prevScatterPdf
 QL_CONST uint kPathTexelRadianceFlags = 3u;  // radiance, flags
 QL_CONST uint kPathTexelHit = 4u;            // hitT, hitU, hitV, hitInstance (trace)
 QL_CONST uint kPathTexelHitPrimitive = 5u;   // hitPrimitive, 0, 0, 0 (trace)
-QL_CONST uint kPathTexelLinks = 6u;          // prevPoint, prevEntry, 0, 0
-QL_CONST uint kPathTexelCounters =
-    7u;  // vertices | covered << 16, half2(cone width, cone spread), rays, shadowRays
+QL_CONST uint kPathTexelCounters = 6u;       // vertices | covered << 16, half2(cone width, cone
+                                             // spread), rays | shadowRays << 16, prevEntry
 // Learning from returns (shaders/include/learning_returns.glsl): the last
 // kReturnRecords vertices' Q entry, radiance so far and throughput, a ring.
 QL_CONST uint kReturnRecords = 4u;
-QL_CONST uint kPathTexelReturnRecords = 8u;  // entry, luminance(radiance), luminance(throughput), 0
+QL_CONST uint kPathTexelReturnRecords = 7u;  // entry, luminance(radiance), luminance(throughput), 0
 QL_CONST uint kPathStateTexels = kPathTexelReturnRecords + kReturnRecords;
 
 // Per queue (two: the current and the next): its count and the indirect
