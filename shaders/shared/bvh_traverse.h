@@ -203,17 +203,21 @@ QL_FN bool bvhTrace(vec3 origin, vec3 dir, float tMax, bool anyHit, QL_OUT(BvhHi
       sp = none ? sp - 1u : (both ? sp + 1u : sp);
       node = none ? top : (rightFirst ? rightRef : leftRef);
     }
-    // Leaves: enter an instance (TLAS) or test up to 8 triangles (BLAS).
-    while (int(node) < 0) {
-      if (blasBase == 0u) {
-        instance = bvhTlasLeafInstance(node);
-        local = bvhInstanceRay(instance, origin, dir);
-        rayOrigin = local.origin;
-        rayInvDir = local.invDir;
-        blasBase = sp;
-        node = bvhInstanceBlasRoot(instance);
-        continue;
-      }
+    // A TLAS leaf: enter its instance. A loop of at most one step rather than
+    // an if, so that the SIMD group pays for it only when one of its lanes
+    // enters an instance (lavapipe runs an if's body under a mask whatever
+    // the lanes, but leaves a loop no lane is in at once).
+    while (int(node) < 0 && blasBase == 0u) {
+      instance = bvhTlasLeafInstance(node);
+      local = bvhInstanceRay(instance, origin, dir);
+      rayOrigin = local.origin;
+      rayInvDir = local.invDir;
+      blasBase = sp;
+      node = bvhInstanceBlasRoot(instance);
+    }
+    // BLAS leaves: test up to 8 triangles, pop, and go on while the popped ref
+    // is another BLAS leaf.
+    while (int(node) < 0 && blasBase != 0u) {
       uint first = bvhLeafFirst(node);
       uint last = first + (node & kBvhLeafCountMask);
       for (uint i = first; i <= last; i++) {
