@@ -107,6 +107,10 @@ render::GuideFeatures DqnGuide::features() const {
   render::GuideFeatures f;
   f.points = true;  // the guiding code paths, with the network for the points
   f.dqn = true;
+  f.dqnBins = shape_.bins;
+  f.dqnWidth = shape_.width;
+  f.dqnHidden = shape_.hidden;
+  f.dqnOutputs = shape_.outputs;
   return f;
 }
 

@@ -14,6 +14,8 @@ struct GuideFeatures {
   bool dqn = false;             // the deep Q network guides instead of the points' tables
   bool directionTrees = false;  // the points' directions are trees, not strata
   bool tdTarget = false;        // Q learns D&K's one-step target, not returns
+  // With dqn: the network's shape (shaders/shared/dqn.h DqnShape), a specialization too.
+  uint32_t dqnBins = 0, dqnWidth = 0, dqnHidden = 0, dqnOutputs = 0;
 };
 
 class Guide {

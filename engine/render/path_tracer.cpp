@@ -101,6 +101,10 @@ const gpu::ComputePipeline& PathTracer::specialized(const char* shader, const Gp
   features[shared::kSpecUseDqn] = guide.dqn;
   features[shared::kSpecUseDirectionTrees] = guide.directionTrees;
   features[shared::kSpecUseTdTarget] = guide.tdTarget;
+  features[shared::kSpecDqnBins] = guide.dqnBins;
+  features[shared::kSpecDqnWidth] = guide.dqnWidth;
+  features[shared::kSpecDqnHidden] = guide.dqnHidden;
+  features[shared::kSpecDqnOutputs] = guide.dqnOutputs;
   return variants_.get(shader, features);
 }
 

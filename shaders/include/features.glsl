@@ -20,3 +20,8 @@ layout(constant_id = QL_SPEC_USE_DQN) const bool kUseDqn = false;
 layout(constant_id = QL_SPEC_USE_DIRECTION_TREES) const bool kUseDirectionTrees = false;
 // D&K's one-step TD target (--learning-target td): its Q lookups at every vertex, else returns.
 layout(constant_id = QL_SPEC_USE_TD_TARGET) const bool kUseTdTarget = false;
+// The deep Q network's shape (with kUseDqn).
+layout(constant_id = QL_SPEC_DQN_BINS) const uint kDqnBins = 16u;
+layout(constant_id = QL_SPEC_DQN_WIDTH) const uint kDqnWidth = 16u;
+layout(constant_id = QL_SPEC_DQN_HIDDEN) const uint kDqnHidden = 1u;
+layout(constant_id = QL_SPEC_DQN_OUTPUTS) const uint kDqnOutputs = 64u;

@@ -18,6 +18,13 @@
 #define QL_SPEC_USE_DQN 10
 #define QL_SPEC_USE_DIRECTION_TREES 11
 #define QL_SPEC_USE_TD_TARGET 12
+// The deep Q network's shape (shared/dqn.h DqnShape): known when the pipeline is made, its
+// loops have fixed counts and its activations fixed places (on lavapipe an array indexed by
+// a runtime value is read lane by lane).
+#define QL_SPEC_DQN_BINS 13
+#define QL_SPEC_DQN_WIDTH 14
+#define QL_SPEC_DQN_HIDDEN 15
+#define QL_SPEC_DQN_OUTPUTS 16
 
 QL_BEGIN
 QL_CONST uint kSpecUseTextures = QL_SPEC_USE_TEXTURES;
@@ -30,7 +37,11 @@ QL_CONST uint kSpecUseAlphaTest = QL_SPEC_USE_ALPHA_TEST;
 QL_CONST uint kSpecUseDqn = QL_SPEC_USE_DQN;
 QL_CONST uint kSpecUseDirectionTrees = QL_SPEC_USE_DIRECTION_TREES;
 QL_CONST uint kSpecUseTdTarget = QL_SPEC_USE_TD_TARGET;
-QL_CONST uint kSpecPathFeatureCount = QL_SPEC_USE_TD_TARGET + 1u;  // values to pass
+QL_CONST uint kSpecDqnBins = QL_SPEC_DQN_BINS;
+QL_CONST uint kSpecDqnWidth = QL_SPEC_DQN_WIDTH;
+QL_CONST uint kSpecDqnHidden = QL_SPEC_DQN_HIDDEN;
+QL_CONST uint kSpecDqnOutputs = QL_SPEC_DQN_OUTPUTS;
+QL_CONST uint kSpecPathFeatureCount = QL_SPEC_DQN_OUTPUTS + 1u;  // values to pass
 QL_END
 
 #endif
