@@ -107,7 +107,8 @@ GuidedRow dqnRow(vec3 position, vec3 normal) {
   GuidedRow r;
   r.frame = frameFromNormal(normal);
   r.base = 0u;
-  DqnShape s = DqnShape(kDqnBins, kDqnWidth, kDqnHidden, kDqnOutputs);  // guiding.dqn.shape
+  // guiding.dqn.shape, as specialization constants: fixed loop counts and activation places.
+  DqnShape s = DqnShape(kDqnBins, kDqnWidth, kDqnHidden, kDqnOutputs);
   dqnForwardHidden(s, (position - guiding.dqn.sceneMin) * guiding.dqn.sceneInvExtent, normal);
   float mean = 0.0;
   for (uint k = 0u; k < s.outputs; ++k) {

@@ -203,10 +203,10 @@ QL_FN bool bvhTrace(vec3 origin, vec3 dir, float tMax, bool anyHit, QL_OUT(BvhHi
       sp = none ? sp - 1u : (both ? sp + 1u : sp);
       node = none ? top : (rightFirst ? rightRef : leftRef);
     }
-    // A TLAS leaf: enter its instance. A loop of at most one step rather than
-    // an if, so that the SIMD group pays for it only when one of its lanes
-    // enters an instance (lavapipe runs an if's body under a mask whatever
-    // the lanes, but leaves a loop no lane is in at once).
+    // A TLAS leaf: enter its instance. Its own loop of at most one step, not an
+    // if inside the triangle loop: lavapipe runs an if's body under a mask
+    // whatever the lanes, so there it ran at every leaf step; here it runs once
+    // per visit of the outer loop.
     while (int(node) < 0 && blasBase == 0u) {
       instance = bvhTlasLeafInstance(node);
       local = bvhInstanceRay(instance, origin, dir);
