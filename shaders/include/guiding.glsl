@@ -111,14 +111,14 @@ GuidedRow dqnRow(vec3 position, vec3 normal) {
   DqnShape s = DqnShape(kDqnBins, kDqnWidth, kDqnHidden, kDqnOutputs);
   dqnForwardHidden(s, (position - guiding.dqn.sceneMin) * guiding.dqn.sceneInvExtent, normal);
   float mean = 0.0;
-  for (uint k = 0u; k < s.outputs; ++k) {
+  [[unroll]] for (uint k = 0u; k < s.outputs; ++k) {
     dqnCdf[k] = dqnQ(dqnOutputZ(s, k));
     mean += dqnCdf[k];
   }
   float floorQ = guiding.dqn.floorShare * mean / float(s.outputs);
   bool finite = mean > 0.0 && !isinf(mean) && !isnan(mean);
   float run = 0.0;
-  for (uint k = 0u; k < s.outputs; ++k) {
+  [[unroll]] for (uint k = 0u; k < s.outputs; ++k) {
     run += guidedStratumWeight(finite ? dqnCdf[k] + floorQ : 1.0, k, guiding.rows, guiding.cols);
     dqnCdf[k] = run;
   }
