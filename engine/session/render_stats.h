@@ -30,6 +30,7 @@ struct RenderStats {
   bool fallbackSky = false;
   bool environmentLight = false;  // the user's environment lights the scene (not black)
   bool guided = false;
+  bool deepQ = false;  // guided by the network (--guiding dqn), not the tables
   guiding::GuidingStats guidingStats;
   double pointGenerationSeconds = 0;
   // The scene on the GPU: triangles, device memory, and the time to build its BLASes and

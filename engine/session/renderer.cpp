@@ -166,6 +166,7 @@ RenderStats Renderer::newStats() const {
   s.fallbackSky = scene_.usesFallbackSky();
   s.environmentLight = scene_.hasEnvironment();
   s.guided = guided();
+  s.deepQ = s.guided && dqnActive_;
   s.pointGenerationSeconds = pointGenerationSeconds_;
   s.triangles = scene_.triangleCount();
   s.sceneGpuBytes = scene_.memoryBytes();

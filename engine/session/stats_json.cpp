@@ -37,13 +37,15 @@ nlohmann::json statsToJson(const RenderStats& s) {
   }
   j["gpu_ms"] = gpu;
   j["gpu_ms_total"] = total;
-  j["guiding"] = s.guided ? "q" : "off";
+  j["guiding"] = !s.guided ? "off" : s.deepQ ? "dqn" : "q";
   j["covered_vertices"] = c.coveredVertices;
   if (s.guided) {
     const auto& g = s.guidingStats;
     double guidingMs = 0;
     for (auto& [name, ms] : s.gpuMs)
-      if (name.rfind("guiding", 0) == 0 || name.rfind("prefix_sum", 0) == 0) guidingMs += ms;
+      if (name.rfind("guiding", 0) == 0 || name.rfind("prefix_sum", 0) == 0 ||
+          name.rfind("dqn.", 0) == 0)
+        guidingMs += ms;
     j["guiding_stats"] = {{"points", g.points},
                           {"strata", g.strata},
                           {"lights_learned", g.lightsLearned},

@@ -22,6 +22,17 @@ void measure(MethodState& m, const image::LinearImage& reference) {
       {m.result.spp, m.result.seconds, relativeMse(m.result.finalImage, reference)});
 }
 
+// lavapipe compiles a pipeline's shader code at its first dispatch, seconds for the deep Q
+// variants, and keeps it in Mesa's shader cache: one untimed frame of each method at a tiny
+// size, by renderers that are then dropped, keeps compilation out of the timed frames.
+void warmUpPipelines(const gpu::Context& ctx, const scene::SceneAsset& asset,
+                     const std::vector<MethodSpec>& methods, const render::RenderSettings& render) {
+  render::RenderSettings tiny = render;
+  tiny.width = tiny.height = 8;
+  for (const MethodSpec& m : methods)
+    session::Renderer(ctx, asset, tiny, m.guiding).renderFrame(0.0f);
+}
+
 }  // namespace
 
 std::vector<MethodSpec> benchMethods(const guiding::GuidingSettings& base) {
@@ -43,6 +54,7 @@ std::vector<MethodResult> runMethods(const gpu::Context& ctx, const scene::Scene
                                      const image::LinearImage& reference, ProgressBar& progress,
                                      double progressBase, const std::string& sceneName) {
   using Clock = std::chrono::steady_clock;
+  warmUpPipelines(ctx, asset, methods, settings.render);
   std::vector<MethodState> states(methods.size());
   for (size_t i = 0; i < methods.size(); ++i) {
     states[i].result.spec = methods[i];

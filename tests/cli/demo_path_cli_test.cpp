@@ -245,5 +245,27 @@ TEST(DemoCli, HeadlessDenoiseFiltersOnlyThePngs) {
   EXPECT_EQ(rays(dir / "raw" / "stats.json"), rays(dir / "denoised" / "stats.json"));
 }
 
+// stats.json says which guide rendered, and deep Q's training passes count as its learning
+// time (they were left out of it, and the guide was called "q").
+TEST(DemoCli, StatsNameTheGuideAndCountDeepQsTraining) {
+  const fs::path dir = tempDir("demo_guide_stats");
+  auto stats = [&](const std::string& guiding) {
+    const fs::path out = dir / guiding;
+    RunResult r = runQlight("demo --headless --scene " + asset("cornell_box.gltf") +
+                            " --frames 3 --width 32 --height 24 --guiding " + guiding + " --out " +
+                            out.string());
+    EXPECT_EQ(r.exitCode, 0) << r.output;
+    return nlohmann::json::parse(std::ifstream(out / "stats.json"));
+  };
+  const nlohmann::json dqn = stats("dqn"), q = stats("q"), off = stats("off");
+  EXPECT_EQ(dqn.at("guiding"), "dqn");
+  EXPECT_EQ(q.at("guiding"), "q");
+  EXPECT_EQ(off.at("guiding"), "off");
+  const double training = dqn.at("gpu_ms").at("dqn.adam").at("ms_per_frame").get<double>() +
+                          dqn.at("gpu_ms").at("dqn.backprop").at("ms_per_frame").get<double>();
+  EXPECT_GE(dqn.at("guiding_stats").at("learning_gpu_ms_per_frame").get<double>(), training);
+  EXPECT_GT(training, 0.0);
+}
+
 }  // namespace
 }  // namespace qlight::test
