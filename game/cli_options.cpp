@@ -74,6 +74,9 @@ void addGuidingOptions(CLI::App& app, guiding::GuidingSettings& g, GuidingCli& c
       ->check(finiteRange(ranges::kDqnLearningRate));
   app.add_option("--dqn-target-interval", g.dqnTargetInterval,
                  "deep Q: frames between target network updates");
+  app.add_option("--dqn-grid", g.dqnGrid,
+                 "deep Q: bake the network into a grid of N^3 cells at each target update and "
+                 "sample from the cells (2..32; 0: evaluate it at every path vertex)");
   app.add_option("--strata", cli.strata, "hemisphere strata RxC, e.g. 8x8 or 16x8");
   app.add_option("--directions", g.directions,
                  "tree (a quadtree per point that refines where Q is) or strata (D&K's RxC)")

@@ -227,6 +227,7 @@ const std::vector<Field>& fields() {
              kDqnLearningRate),
       number(kGuiding, "dqn_target_interval", "--dqn-target-interval", &G::dqnTargetInterval,
              kAnyUint),
+      number(kGuiding, "dqn_grid", "--dqn-grid", &G::dqnGrid, kAnyUint),
       strata(),
       word(kGuiding, "directions", "--directions", &G::directions, directionModelWords()),
       number(kGuiding, "tree_nodes", "--tree-nodes", &G::treeNodes, kAnyUint),

@@ -17,6 +17,7 @@ constexpr ImGuiSliderFlags kLogClamp = ImGuiSliderFlags_Logarithmic | kClamp;
 void drawNetworkSettings(guiding::GuidingSettings& s) {
   int width = int(s.dqnWidth) / 4, layers = int(s.dqnHidden), bins = int(s.dqnBins);
   int batch = int(s.dqnBatch), interval = int(s.dqnTargetInterval), steps = int(s.dqnStepsPerFrame);
+  int grid = int(s.dqnGrid);
   ImGui::SliderInt("network width", &width, 1, int(shared::kDqnMaxWidth) / 4, "", kClamp);
   ImGui::SameLine();
   ImGui::Text("%d neurons", 4 * width);
@@ -26,18 +27,24 @@ void drawNetworkSettings(guiding::GuidingSettings& s) {
   ImGui::SliderInt("steps per frame", &steps, 0, 8, "%d", kClamp);
   ImGui::SliderFloat("network learning rate", &s.dqnLearningRate, 1e-5f, 1e-1f, "%.5f", kLogClamp);
   ImGui::SliderInt("target interval", &interval, 1, 64, "%d frames", kClamp);
+  // The paths evaluate the network at every vertex (0), or read the cell of a grid it is baked
+  // into.
+  ImGui::SliderInt("baked grid", &grid, 0, int(shared::kDqnMaxGrid), grid == 0 ? "off" : "%d cells",
+                   kClamp);
   s.dqnWidth = uint32_t(4 * width);
   s.dqnHidden = uint32_t(layers);
   s.dqnBins = uint32_t(bins);
   s.dqnBatch = uint32_t(batch);
   s.dqnStepsPerFrame = uint32_t(steps);
   s.dqnTargetInterval = uint32_t(interval);
+  s.dqnGrid = grid == 1 ? 2u : uint32_t(grid);
 }
 
 bool networkChanged(const guiding::GuidingSettings& a, const guiding::GuidingSettings& b) {
   return a.dqnWidth != b.dqnWidth || a.dqnHidden != b.dqnHidden || a.dqnBins != b.dqnBins ||
          a.dqnBatch != b.dqnBatch || a.dqnStepsPerFrame != b.dqnStepsPerFrame ||
-         a.dqnLearningRate != b.dqnLearningRate || a.dqnTargetInterval != b.dqnTargetInterval;
+         a.dqnLearningRate != b.dqnLearningRate || a.dqnTargetInterval != b.dqnTargetInterval ||
+         a.dqnGrid != b.dqnGrid;
 }
 
 }  // namespace

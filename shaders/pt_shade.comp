@@ -312,8 +312,8 @@ bool sampleScatter(inout PathState st, inout Rng rng, Vertex v, ScatterMix m, Ra
     st.prevPoint = m.point;
     // The Q entry this direction updates once the next vertex is known.
     st.prevEntry = learn && m.point != kNoCachePoint && pointLocal.z > 0.0 ? g.entry : kNoCachePoint;
-    if (kUseDqn && st.prevEntry != kNoCachePoint)  // the entry is the stratum (row base 0)
-      st.prevEntry = dqnOpenRecord(v.s.position, m.row.frame.normal, st.prevEntry);
+    if (kUseDqn && st.prevEntry != kNoCachePoint)  // the entry is the row's stratum
+      st.prevEntry = dqnOpenRecord(v.s.position, m.row.frame.normal, st.prevEntry - m.row.base);
     // The ray cone after the bounce: its width here, spread by the lobe (a diffuse bounce
     // blurs what the next hit reads from its textures, a glossy one by its roughness).
     st.coneWidth += st.coneSpread * st.hitT * length(st.dir);

@@ -6,6 +6,7 @@
 #include <random>
 
 #include "shaders/shared/guiding_types.h"
+#include "shaders/shared/specialization.h"
 
 namespace qlight::guiding {
 namespace {
@@ -23,6 +24,18 @@ uint32_t frameQuota(uint64_t pathsPerFrame, uint32_t replayFrames) {
       std::clamp<uint64_t>(pathsPerFrame * kVerticesPerPath, 1024, kMaxRingRecords / replayFrames));
 }
 
+// The bake pass is specialized on the network's shape and the grid, as the path passes are.
+std::vector<uint32_t> bakeSpecialization(shared::DqnShape s, uint32_t grid) {
+  std::vector<uint32_t> v(shared::kSpecPathFeatureCount, 0);
+  v[shared::kSpecUseDqn] = 1;
+  v[shared::kSpecDqnBins] = s.bins;
+  v[shared::kSpecDqnWidth] = s.width;
+  v[shared::kSpecDqnHidden] = s.hidden;
+  v[shared::kSpecDqnOutputs] = s.outputs;
+  v[shared::kSpecDqnGrid] = std::max(grid, 1u);
+  return v;
+}
+
 }  // namespace
 
 DqnGuide::DqnGuide(const gpu::Context& ctx, const GuidingSettings& settings,
@@ -36,6 +49,7 @@ DqnGuide::DqnGuide(const gpu::Context& ctx, const GuidingSettings& settings,
       backprop_(ctx, "dqn_backprop"),
       adam_(ctx, "dqn_adam"),
       evaluate_(ctx, "dqn_evaluate"),
+      bake_(ctx, "dqn_bake", bakeSpecialization(shape_, settings.dqnGrid)),
       guidingUniforms_(ctx, sizeof(shared::GuidingUniforms), "dqn.guiding", 0,
                        gpu::MemoryUse::HostVisible),
       online_(ctx, parameters_ * 4ull, "dqn.online"),
@@ -55,6 +69,12 @@ DqnGuide::DqnGuide(const gpu::Context& ctx, const GuidingSettings& settings,
   sceneMin_ = lo - pad;
   sceneInvExtent_ = 1.0f / (hi - lo + 2.0f * pad);
   targetView_ = std::make_unique<gpu::BufferView>(ctx, target_, VK_FORMAT_R32G32B32A32_SFLOAT);
+  if (settings.dqnGrid > 0) {
+    const uint64_t rows = shared::dqnGridRows(settings.dqnGrid);
+    gridRows_ = std::make_unique<gpu::Buffer>(ctx, rows * shape_.outputs * 4ull, "dqn.grid",
+                                              VK_BUFFER_USAGE_UNIFORM_TEXEL_BUFFER_BIT);
+    gridView_ = std::make_unique<gpu::BufferView>(ctx, *gridRows_, VK_FORMAT_R32_SFLOAT);
+  }
   uploadWeights(initialWeights(shape_, settings.seed));
   std::vector<shared::DqnRecord> none(capacity_,
                                       shared::DqnRecord{{}, 0, {}, shared::kDqnNoTarget});
@@ -90,6 +110,12 @@ void DqnGuide::uploadWeights(const std::vector<float>& weights) {
   moments_.upload<float>(ctx_, std::vector<float>(2 * size_t(parameters_), 0.0f));
   gradient_.upload<float>(ctx_, std::vector<float>(parameters_, 0.0f));
   steps_ = 0;
+  if (gridRows_)
+    ctx_.submitAndWait([&](VkCommandBuffer cmd) {
+      gpu::PassRecorder rec(ctx_, cmd);
+      recordBake(rec);
+      rec.finish();
+    });
 }
 
 glm::vec3 DqnGuide::position01(glm::vec3 world) const {
@@ -100,7 +126,9 @@ bool DqnGuide::sameShape(const GuidingSettings& s) const {
   const shared::DqnShape n = shapeOf(s);
   return n.bins == shape_.bins && n.width == shape_.width && n.hidden == shape_.hidden &&
          n.outputs == shape_.outputs && s.dqnBatch == settings_.dqnBatch &&
-         s.dqnReplayFrames == settings_.dqnReplayFrames;
+         s.dqnReplayFrames == settings_.dqnReplayFrames && s.dqnGrid == settings_.dqnGrid &&
+         (s.dqnGrid == 0 || (s.dqnFloorShare == settings_.dqnFloorShare &&
+                             s.rows == settings_.rows && s.cols == settings_.cols));
 }
 
 render::GuideFeatures DqnGuide::features() const {
@@ -111,6 +139,7 @@ render::GuideFeatures DqnGuide::features() const {
   f.dqnWidth = shape_.width;
   f.dqnHidden = shape_.hidden;
   f.dqnOutputs = shape_.outputs;
+  f.dqnGrid = settings_.dqnGrid;
   return f;
 }
 
@@ -143,7 +172,7 @@ void DqnGuide::bind(gpu::PassBuilder& pass) const {
   // The tables' slots carry the network, the replay ring and its count (guide_bindings.h).
   GuideBuffers b = placeholders_.buffers();
   b.uniforms = &guidingUniforms_;
-  b.qCdf = targetView_.get();
+  b.qCdf = gridView_ ? gridView_.get() : targetView_.get();
   b.qSums = &records_;
   b.qCounts = &counter_;
   bindGuideBuffers(pass, b);
@@ -183,8 +212,26 @@ void DqnGuide::recordLearning(gpu::PassRecorder& rec) {
     for (uint32_t s = 0; s < settings_.dqnStepsPerFrame; ++s) recordStep(rec);
   rec.fill("dqn.counter_reset", counter_, 0);
   frameStart_ = (frameStart_ + quota_) % capacity_;
-  if (settings_.learn && frames_ % settings_.dqnTargetInterval == 0)
+  if (settings_.learn && frames_ % settings_.dqnTargetInterval == 0) {
     rec.copy("dqn.target_copy", online_, target_, parameters_ * 4ull);
+    if (gridRows_) recordBake(rec);
+  }
+}
+
+void DqnGuide::recordBake(gpu::PassRecorder& rec) {
+  shared::DqnBakePush push{};
+  push.rows = settings_.rows;
+  push.cols = settings_.cols;
+  push.floorShare = settings_.dqnFloorShare;
+  rec.pass("dqn.bake", bake_)
+      .read(QL_DQN_BIND_WEIGHTS, *targetView_)
+      .write(QL_DQN_BIND_OUTPUT, *gridRows_)
+      .push(push)
+      .dispatchThreads(shared::dqnGridRows(settings_.dqnGrid));
+}
+
+std::vector<float> DqnGuide::readGridRows() const {
+  return gridRows_ ? gridRows_->read<float>(ctx_) : std::vector<float>{};
 }
 
 std::vector<float> DqnGuide::readWeights() const { return online_.read<float>(ctx_); }
@@ -242,7 +289,8 @@ DqnStats DqnGuide::stats() const {
 
 uint64_t DqnGuide::memoryBytes() const {
   return online_.size() + target_.size() + moments_.size() + gradient_.size() + scratch_.size() +
-         losses_.size() + records_.size() + counter_.size() + guidingUniforms_.size();
+         losses_.size() + records_.size() + counter_.size() + guidingUniforms_.size() +
+         (gridRows_ ? gridRows_->size() : 0);
 }
 
 }  // namespace qlight::guiding

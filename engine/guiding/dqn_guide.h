@@ -4,6 +4,8 @@
 // the learn phase trains the online copy on a batch drawn from the ring (relative L2 loss
 // on the returns, backpropagation and Adam in compute shaders) and every targetInterval
 // frames copies it to the target. Sampling and pdf are the tables' (shaders/shared/dqn.h).
+// With a baked grid (settings.dqnGrid) each target copy is also evaluated once per grid
+// row, and the paths read the rows instead of running the network.
 #pragma once
 #include <memory>
 #include <vector>
@@ -60,6 +62,9 @@ class DqnGuide final : public render::Guide {
   uint32_t capacity() const { return capacity_; }
   // One training step on the ring now (tests): with apply false only the gradient.
   void trainNow(bool apply);
+  // The baked grid's rows (shared/dqn.h dqnGridRow order; each the inclusive CDF of its
+  // sampling weights, strata consecutive); empty without a grid.
+  std::vector<float> readGridRows() const;
   // The online network's Q per stratum at each state (position01, normal), strata
   // consecutive per state.
   std::vector<float> evaluate(const std::vector<shared::DqnRecord>& states) const;
@@ -71,17 +76,20 @@ class DqnGuide final : public render::Guide {
 
  private:
   void recordStep(gpu::PassRecorder& rec, bool apply = true);
+  void recordBake(gpu::PassRecorder& rec);  // the grid's rows from the target copy
 
   const gpu::Context& ctx_;
   GuidingSettings settings_;
   shared::DqnShape shape_;
   glm::vec3 sceneMin_, sceneInvExtent_;
   uint32_t parameters_, capacity_, quota_;
-  gpu::ComputePipeline backprop_, adam_, evaluate_;
+  gpu::ComputePipeline backprop_, adam_, evaluate_, bake_;
   gpu::Buffer guidingUniforms_;  // shared::GuidingUniforms, its dqn block included
   gpu::Buffer online_, target_;  // parameters; the paths read the target
   std::unique_ptr<gpu::BufferView> targetView_;
   gpu::Buffer moments_, gradient_, scratch_, losses_, records_, counter_;
+  std::unique_ptr<gpu::Buffer> gridRows_;  // with a grid: its rows' CDFs
+  std::unique_ptr<gpu::BufferView> gridView_;
   GuidePlaceholders placeholders_;  // the tables' bindings
   uint32_t steps_ = 0, frames_ = 0, frameStart_ = 0;
 };

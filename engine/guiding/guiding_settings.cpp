@@ -33,6 +33,9 @@ void validateDqn(const GuidingSettings& s) {
   if (s.dqnWarmupSteps > 100000) throw std::invalid_argument("warm-up steps must be 0..100000");
   if (!std::isfinite(s.dqnFloorShare) || s.dqnFloorShare <= 0 || s.dqnFloorShare > 10)
     throw std::invalid_argument("network floor share must be in (0, 10]");
+  if (s.dqnGrid == 1 || s.dqnGrid > shared::kDqnMaxGrid)
+    throw std::invalid_argument("network grid must be 0 (no grid) or 2.." +
+                                std::to_string(shared::kDqnMaxGrid) + " cells per axis");
 }
 
 }  // namespace

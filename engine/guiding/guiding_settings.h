@@ -47,6 +47,9 @@ struct GuidingSettings {
   uint32_t dqnReplayFrames = 8;  // frames of records the replay ring holds
   uint32_t dqnWarmupSteps = 16;  // training steps before the network guides at the full share
   float dqnFloorShare = 0.1f;    // each stratum's weight gets this share of the mean
+  // Cells per axis of the grid the target network is baked into at each refresh (the paths
+  // read a cell's row as they read a point's); 0: the paths evaluate it at every vertex.
+  uint32_t dqnGrid = 0;
   DirectionModel directions = DirectionModel::Strata;  // --directions (tree: being measured)
   uint32_t rows = 8;  // strata: rows x cols, equal solid angle (trees: the nominal resolution
   uint32_t cols = 8;  // of the confidence, rows x cols leaves' worth of updates)

@@ -16,6 +16,7 @@ struct GuideFeatures {
   bool tdTarget = false;        // Q learns D&K's one-step target, not returns
   // With dqn: the network's shape (shaders/shared/dqn.h DqnShape), a specialization too.
   uint32_t dqnBins = 0, dqnWidth = 0, dqnHidden = 0, dqnOutputs = 0;
+  uint32_t dqnGrid = 0;  // cells per axis of its baked grid (0: evaluated at every vertex)
 };
 
 class Guide {

@@ -105,6 +105,7 @@ const gpu::ComputePipeline& PathTracer::specialized(const char* shader, const Gp
   features[shared::kSpecDqnWidth] = guide.dqnWidth;
   features[shared::kSpecDqnHidden] = guide.dqnHidden;
   features[shared::kSpecDqnOutputs] = guide.dqnOutputs;
+  features[shared::kSpecDqnGrid] = guide.dqnGrid;
   return variants_.get(shader, features);
 }
 

@@ -52,3 +52,26 @@ float dqnOutputZ(DqnShape s, uint k) {
   return dqnParameter(dqnBiasOffset(s, s.hidden) + k) +
          dqnRowDot(row4, dqnScratchActivation(s, s.hidden) / 4u, stride4);
 }
+
+// The sampling distribution of a state, after dqnForwardHidden: dqnCdf gets the inclusive CDF
+// of (Q_k + floor) cosInt_k over the strata, the floor a share of the mean Q, so every
+// direction stays possible whatever the network outputs; outputs that are not finite fall
+// back to uniform Q. Returns the total. The includer includes shared/strata.h.
+float dqnCdf[kDqnMaxOutputs];
+float guidedStratumWeight(float q, uint k, uint rows, uint cols);
+
+float dqnFillCdf(DqnShape s, float floorShare, uint rows, uint cols) {
+  float mean = 0.0;
+  [[unroll]] for (uint k = 0u; k < s.outputs; ++k) {
+    dqnCdf[k] = dqnQ(dqnOutputZ(s, k));
+    mean += dqnCdf[k];
+  }
+  float floorQ = floorShare * mean / float(s.outputs);
+  bool finite = mean > 0.0 && !isinf(mean) && !isnan(mean);
+  float run = 0.0;
+  [[unroll]] for (uint k = 0u; k < s.outputs; ++k) {
+    run += guidedStratumWeight(finite ? dqnCdf[k] + floorQ : 1.0, k, rows, cols);
+    dqnCdf[k] = run;
+  }
+  return run;
+}

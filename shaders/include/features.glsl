@@ -25,3 +25,5 @@ layout(constant_id = QL_SPEC_DQN_BINS) const uint kDqnBins = 16u;
 layout(constant_id = QL_SPEC_DQN_WIDTH) const uint kDqnWidth = 16u;
 layout(constant_id = QL_SPEC_DQN_HIDDEN) const uint kDqnHidden = 1u;
 layout(constant_id = QL_SPEC_DQN_OUTPUTS) const uint kDqnOutputs = 64u;
+// Cells per axis of its baked grid; 0: the paths evaluate the network at every vertex.
+layout(constant_id = QL_SPEC_DQN_GRID) const uint kDqnGrid = 0u;

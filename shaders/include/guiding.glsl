@@ -22,15 +22,16 @@ layout(binding = QL_BIND_Q_CHILDREN) uniform usamplerBuffer uQChildren;
 // Learned NEE probability: kNeeWordsPerPoint words a point (shared/guiding_types.h).
 layout(binding = QL_BIND_NEE_COUNTS, scalar) buffer NeeCounts { uint neeCounts[]; };
 // Deep Q (kUseDqn) binds the tables' slots to its own buffers: QL_BIND_Q_CDF holds the
-// network the paths sample from (an RGBA32F view: 4 parameters a texel), QL_BIND_Q_SUM the replay ring (DqnRecord, 8 words each) and
-// QL_BIND_Q_COUNT's first word the count of this frame's records.
+// network the paths sample from (an RGBA32F view: 4 parameters a texel) or its baked grid's
+// rows, QL_BIND_Q_SUM the replay ring (DqnRecord, 8 words each) and QL_BIND_Q_COUNT's first
+// word the count of this frame's records.
 #define QL_DQN_WEIGHT4(i4) texelFetch(uQCdf, int(i4))
 #include "include/dqn.glsl"
-// The vertex's guided distribution with deep Q: the inclusive CDF of Q_k cosInt_k, filled
-// by dqnRow and read through qCdf like a point's row (base 0), so sampling, pdf and MIS are
-// the tables' code.
-float dqnCdf[kDqnMaxOutputs];
-
+// With deep Q the vertex's guided distribution is dqnCdf (the inclusive CDF of Q_k cosInt_k,
+// filled by dqnRow), or with the baked grid (kDqnGrid > 0) a row of QL_BIND_Q_CDF, which then
+// holds the grid's rows instead of the network; either is read through qCdf like a point's
+// row, so sampling, pdf and MIS are the tables' code.
+bool dqnPerVertex() { return kUseDqn && kDqnGrid == 0u; }
 
 GpuCachePoint cachePointAt(uint i) {
   vec4 a = texelFetch(uCachePoints, int(2u * i));
@@ -42,7 +43,7 @@ GpuCachePoint cachePointAt(uint i) {
   p.pad = 0u;
   return p;
 }
-float qCdf(uint i) { return kUseDqn ? dqnCdf[i] : texelFetch(uQCdf, int(i)).x; }
+float qCdf(uint i) { return dqnPerVertex() ? dqnCdf[i] : texelFetch(uQCdf, int(i)).x; }
 float vCdf(uint i) { return texelFetch(uVCdf, int(i)).x; }
 
 #define QL_CDF_AT(i) qCdf(i)
@@ -100,29 +101,22 @@ GuidedRow guidedRow(uint point) {
   return r;
 }
 
-// The network's distribution at a vertex (deep Q): Q_k = exp(z_k) for each stratum of the
-// frame of its normal, plus a floor share of their mean, so every direction stays possible
-// whatever the network outputs; weights that are not finite fall back to uniform Q.
+// The network's distribution at a vertex (deep Q): evaluated there (dqnFillCdf), or read
+// from the baked grid's row of its cell and normal axis, in the frame of its own normal.
 GuidedRow dqnRow(vec3 position, vec3 normal) {
   GuidedRow r;
   r.frame = frameFromNormal(normal);
+  vec3 p01 = (position - guiding.dqn.sceneMin) * guiding.dqn.sceneInvExtent;
+  if (kDqnGrid > 0u) {
+    r.base = dqnGridRow(p01, normal, kDqnGrid) * strataCount();
+    r.total = qCdf(r.base + strataCount() - 1u);
+    return r;
+  }
   r.base = 0u;
   // guiding.dqn.shape, as specialization constants: fixed loop counts and activation places.
   DqnShape s = DqnShape(kDqnBins, kDqnWidth, kDqnHidden, kDqnOutputs);
-  dqnForwardHidden(s, (position - guiding.dqn.sceneMin) * guiding.dqn.sceneInvExtent, normal);
-  float mean = 0.0;
-  [[unroll]] for (uint k = 0u; k < s.outputs; ++k) {
-    dqnCdf[k] = dqnQ(dqnOutputZ(s, k));
-    mean += dqnCdf[k];
-  }
-  float floorQ = guiding.dqn.floorShare * mean / float(s.outputs);
-  bool finite = mean > 0.0 && !isinf(mean) && !isnan(mean);
-  float run = 0.0;
-  [[unroll]] for (uint k = 0u; k < s.outputs; ++k) {
-    run += guidedStratumWeight(finite ? dqnCdf[k] + floorQ : 1.0, k, guiding.rows, guiding.cols);
-    dqnCdf[k] = run;
-  }
-  r.total = run;
+  dqnForwardHidden(s, p01, normal);
+  r.total = dqnFillCdf(s, guiding.dqn.floorShare, guiding.rows, guiding.cols);
   return r;
 }
 

@@ -79,6 +79,43 @@ QL_FN float dqnInput(vec3 position01, vec3 normal, uint i, uint bins) {
 QL_CONST float kDqnMaxLogQ = 30.0f;
 QL_FN float dqnQ(float z) { return exp(clamp(z, -kDqnMaxLogQ, kDqnMaxLogQ)); }
 
+// The baked grid (--dqn-grid; its size is a specialization constant of the path passes,
+// kDqnGrid): after each refresh of the target copy a pass evaluates it at the centre of each
+// cell of a grid^3 over the scene's bounds, for each of the 6 axis normals, and stores each
+// row's sampling CDF as the tables store a point's; a vertex then reads the row of its cell
+// and its normal's nearest axis, and the forward pass leaves the paths.
+QL_CONST uint kDqnMaxGrid = 32u;
+QL_CONST uint kDqnGridNormals = 6u;  // +x, -x, +y, -y, +z, -z
+
+QL_FN uint dqnGridNormalBin(vec3 n) {
+  vec3 a = abs(n);
+  uint axis = a.x >= a.y && a.x >= a.z ? 0u : (a.y >= a.z ? 1u : 2u);
+  float c = axis == 0u ? n.x : (axis == 1u ? n.y : n.z);
+  return 2u * axis + (c < 0.0f ? 1u : 0u);
+}
+QL_FN vec3 dqnGridNormal(uint bin) {
+  float sign = (bin & 1u) != 0u ? -1.0f : 1.0f;
+  uint axis = bin >> 1u;
+  return vec3(axis == 0u ? sign : 0.0f, axis == 1u ? sign : 0.0f, axis == 2u ? sign : 0.0f);
+}
+QL_FN uint dqnGridCellAxis(float x01, uint grid) {
+  return uint(clamp(x01 * float(grid), 0.0f, float(grid) - 0.5f));  // NaN clamps to 0
+}
+// Row index of a state (position in [0, 1]^3 of the bounds, geometric normal).
+QL_FN uint dqnGridRow(vec3 position01, vec3 normal, uint grid) {
+  uint cell =
+      dqnGridCellAxis(position01.x, grid) +
+      grid * (dqnGridCellAxis(position01.y, grid) + grid * dqnGridCellAxis(position01.z, grid));
+  return cell * kDqnGridNormals + dqnGridNormalBin(normal);
+}
+QL_FN uint dqnGridRows(uint grid) { return grid * grid * grid * kDqnGridNormals; }
+// The state a row was evaluated at.
+QL_FN vec3 dqnGridRowPosition01(uint row, uint grid) {
+  uint cell = row / kDqnGridNormals;
+  uint x = cell % grid, y = (cell / grid) % grid, z = cell / (grid * grid);
+  return (vec3(float(x), float(y), float(z)) + 0.5f) / float(grid);
+}
+
 // The loss of a record is the relative squared error of its stratum's Q against its target
 // (both in units of the scene's target scale), (Q - y)^2 / (sg(Q)^2 + eps^2), the relative
 // L2 loss of Mueller et al.'s radiance caching: high-dynamic-range returns weigh alike at
@@ -127,7 +164,7 @@ QL_CHECK_SIZE(DqnUniforms, 64);
 #define QL_DQN_BIND_ADAM 3      // first and second moments per parameter
 #define QL_DQN_BIND_GRADIENT 4  // the step's gradient (tests and stats)
 #define QL_DQN_BIND_LOSS 5      // per batch record: its loss (0 for empty records)
-#define QL_DQN_BIND_OUTPUT 6    // dqn_evaluate.comp: Q per stratum of each state
+#define QL_DQN_BIND_OUTPUT 6    // Q per stratum of each state; dqn_bake: the rows' CDFs
 
 struct DqnTrainPush {
   DqnShape shape;
@@ -141,6 +178,16 @@ struct DqnTrainPush {
   float epsilon;
 };
 QL_CHECK_SIZE(DqnTrainPush, 48);
+
+// dqn_bake.comp (its shape and grid are specialization constants): the sampling weights'
+// floor and the strata.
+struct DqnBakePush {
+  uint rows;  // strata rows and columns
+  uint cols;
+  float floorShare;
+  uint pad;
+};
+QL_CHECK_SIZE(DqnBakePush, 16);
 
 // Scratch floats per batch record: inputs (rounded to 4), each hidden layer's activations,
 // each hidden layer's deltas, then the stratum and the output's gradient.

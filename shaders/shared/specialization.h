@@ -25,6 +25,7 @@
 #define QL_SPEC_DQN_WIDTH 14
 #define QL_SPEC_DQN_HIDDEN 15
 #define QL_SPEC_DQN_OUTPUTS 16
+#define QL_SPEC_DQN_GRID 17  // cells per axis of the network's baked grid (0: none)
 
 QL_BEGIN
 QL_CONST uint kSpecUseTextures = QL_SPEC_USE_TEXTURES;
@@ -41,7 +42,8 @@ QL_CONST uint kSpecDqnBins = QL_SPEC_DQN_BINS;
 QL_CONST uint kSpecDqnWidth = QL_SPEC_DQN_WIDTH;
 QL_CONST uint kSpecDqnHidden = QL_SPEC_DQN_HIDDEN;
 QL_CONST uint kSpecDqnOutputs = QL_SPEC_DQN_OUTPUTS;
-QL_CONST uint kSpecPathFeatureCount = QL_SPEC_DQN_OUTPUTS + 1u;  // values to pass
+QL_CONST uint kSpecDqnGrid = QL_SPEC_DQN_GRID;
+QL_CONST uint kSpecPathFeatureCount = QL_SPEC_DQN_GRID + 1u;  // values to pass
 QL_END
 
 #endif

@@ -9,6 +9,7 @@
 
 #include "engine/guiding/dqn_guide.h"
 #include "engine/scene/scene_asset.h"
+#include "shaders/shared/strata.h"
 #include "tests/gpu/gpu_fixture.h"
 #include "tests/render/furnace_scene.h"
 
@@ -116,6 +117,51 @@ TEST_F(DqnNetwork, ForwardPassMatchesTheCpuReference) {
     }
   }
   EXPECT_GT(spread, 1.0) << "outputs must not all be near exp(0)";
+}
+
+// The baked grid (--dqn-grid): every row is the sampling CDF of the network at its cell's
+// centre and its axis normal, (Q_k + floor share x mean Q) times the stratum's cosine
+// integral, accumulated, from the CPU reference; and a state reads the row of the cell it
+// lies in and of the axis nearest its normal.
+TEST_F(DqnNetwork, BakedGridRowsAreTheNetworksCdfAtTheCellCentres) {
+  guiding::GuidingSettings g = dqnSettings();
+  g.dqnGrid = 3;
+  auto guide = makeGuide(g);
+  std::mt19937 rng(7);
+  std::normal_distribution<float> normal(0.0f, 0.4f);
+  std::vector<float> w(guide->stats().parameters);
+  for (float& x : w) x = normal(rng);
+  guide->uploadWeights(w);  // bakes the grid
+  CpuNetwork ref{guide->shape(), std::vector<double>(w.begin(), w.end())};
+  const uint32_t strata = 16, rows = shared::dqnGridRows(3);
+  const std::vector<float> cdf = guide->readGridRows();
+  ASSERT_EQ(cdf.size(), size_t(rows) * strata);
+  for (uint32_t row = 0; row < rows; ++row) {
+    const DqnRecord state{shared::dqnGridRowPosition01(row, 3), 0,
+                          shared::dqnGridNormal(row % shared::kDqnGridNormals), 0.0f};
+    const std::vector<double> z = ref.forward(state);
+    double mean = 0;
+    for (double x : z) mean += std::exp(x) / strata;
+    double run = 0;
+    for (uint32_t k = 0; k < strata; ++k) {
+      run += (std::exp(z[k]) + g.dqnFloorShare * mean) * shared::stratumCosineIntegral(k, 4, 4);
+      ASSERT_NEAR(cdf[row * strata + k], run, 1e-4 * run) << "row " << row << " stratum " << k;
+    }
+  }
+  // Which row a state reads: its cell (3 per axis) and its normal's nearest axis.
+  EXPECT_EQ(shared::dqnGridRow({0.1f, 0.5f, 0.9f}, glm::vec3(0.2f, -0.9f, 0.1f), 3),
+            (0u + 3u * (1u + 3u * 2u)) * 6u + 3u);  // cell (0, 1, 2), -y
+  EXPECT_EQ(shared::dqnGridRow({1.2f, -0.1f, 0.34f}, glm::vec3(0.0f, 0.3f, 0.95f), 3),
+            (2u + 3u * (0u + 3u * 1u)) * 6u + 4u);  // clamped to the edges, cell (2, 0, 1), +z
+  for (int i = 0; i < 100; ++i) {
+    const DqnRecord r = randomRecord(rng, strata);
+    const uint32_t row = shared::dqnGridRow(r.position01, r.normal, 3);
+    const glm::vec3 centre = shared::dqnGridRowPosition01(row, 3);
+    EXPECT_LE(glm::length(glm::max(glm::abs(centre - r.position01) - 0.5f / 3, 0.0f)), 1e-6f);
+    const glm::vec3 axis = shared::dqnGridNormal(row % 6);
+    for (uint32_t b = 0; b < 6; ++b)
+      EXPECT_GE(glm::dot(axis, r.normal), glm::dot(shared::dqnGridNormal(b), r.normal));
+  }
 }
 
 // The training step's gradient (dqn_backprop + dqn_adam with no step) against finite

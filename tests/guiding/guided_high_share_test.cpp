@@ -1,7 +1,8 @@
 // Guided sampling at the highest share the settings allow (0.95) and full trust from the
-// first update, by the cache points' Q tables and by the deep Q network: nearly every
-// direction comes from the learned distribution, so its pdf must be exactly the density it
-// samples, whatever was learned. The renders must still converge to the right answer:
+// first update, by the cache points' Q tables and by the deep Q network (evaluated at each
+// vertex or read from its baked grid): nearly every direction comes from the learned
+// distribution, so its pdf must be exactly the density it samples, whatever was learned. The
+// renders must still converge to the right answer:
 //  - a white furnace (closed box, albedo a, emission E everywhere) equals
 //    E / (1 - a). Scattering only, so each bounce's weight is f cos / pdf: a
 //    guided pdf 5% off scales every bounce by ~1/1.05 and the image by ~15%
@@ -13,9 +14,16 @@
 namespace qlight::test {
 namespace {
 
-guiding::GuidingSettings highShare(guiding::GuideMethod method, uint32_t seed) {
+// Q tables, deep Q evaluated at every vertex, deep Q read from its baked grid.
+struct Guide {
+  guiding::GuideMethod method;
+  uint32_t dqnGrid;
+};
+
+guiding::GuidingSettings highShare(Guide guide, uint32_t seed) {
   guiding::GuidingSettings g;
-  g.method = method;
+  g.method = guide.method;
+  g.dqnGrid = guide.dqnGrid;
   g.selectProbability = 0.95f;
   g.confidenceUpdates = 0.0f;  // every point guides at the full share at once
   g.pointBudget = 2048;
@@ -26,8 +34,7 @@ guiding::GuidingSettings highShare(guiding::GuideMethod method, uint32_t seed) {
   return g;
 }
 
-class GuidedHighShare : public GpuTest,
-                        public ::testing::WithParamInterface<guiding::GuideMethod> {};
+class GuidedHighShare : public GpuTest, public ::testing::WithParamInterface<Guide> {};
 
 TEST_P(GuidedHighShare, WhiteFurnaceIsEmissionOverOneMinusAlbedo) {
   const float albedo = 0.8f, emission = 0.5f;
@@ -40,7 +47,7 @@ TEST_P(GuidedHighShare, WhiteFurnaceIsEmissionOverOneMinusAlbedo) {
   auto r = session::renderScene(ctx(), asset, s, 64, 0.0f, highShare(GetParam(), 3));
   EXPECT_EQ(r.stats.counters.invalidSamples, 0u);
   EXPECT_TRUE(r.stats.guided);
-  if (GetParam() == guiding::GuideMethod::Q) {
+  if (GetParam().method == guiding::GuideMethod::Q) {
     EXPECT_GT(r.stats.guidingStats.points, 100u);
     // Most vertices found a point, so most directions were guided.
     EXPECT_GT(double(r.stats.counters.coveredVertices),
@@ -79,9 +86,12 @@ TEST_P(GuidedHighShare, DoorAgreesWithUnguidedWithinNoise) {
 }
 
 INSTANTIATE_TEST_SUITE_P(Methods, GuidedHighShare,
-                         ::testing::Values(guiding::GuideMethod::Q, guiding::GuideMethod::Dqn),
+                         ::testing::Values(Guide{guiding::GuideMethod::Q, 0},
+                                           Guide{guiding::GuideMethod::Dqn, 0},
+                                           Guide{guiding::GuideMethod::Dqn, 8}),
                          [](const auto& info) {
-                           return info.param == guiding::GuideMethod::Q ? "QTables" : "DeepQ";
+                           if (info.param.method == guiding::GuideMethod::Q) return "QTables";
+                           return info.param.dqnGrid == 0 ? "DeepQ" : "DeepQBakedGrid";
                          });
 
 }  // namespace
