@@ -19,6 +19,9 @@ struct Guide {
   guiding::GuideMethod method;
   uint32_t dqnGrid;
 };
+void PrintTo(const Guide& g, std::ostream* os) {
+  *os << (g.method == guiding::GuideMethod::Q ? "Q tables" : "deep Q, grid ") << g.dqnGrid;
+}
 
 guiding::GuidingSettings highShare(Guide guide, uint32_t seed) {
   guiding::GuidingSettings g;
