@@ -20,7 +20,10 @@ struct Guide {
   uint32_t dqnGrid;
 };
 void PrintTo(const Guide& g, std::ostream* os) {
-  *os << (g.method == guiding::GuideMethod::Q ? "Q tables" : "deep Q, grid ") << g.dqnGrid;
+  if (g.method == guiding::GuideMethod::Q)
+    *os << "Q tables";
+  else
+    *os << "deep Q, grid " << g.dqnGrid;
 }
 
 guiding::GuidingSettings highShare(Guide guide, uint32_t seed) {
