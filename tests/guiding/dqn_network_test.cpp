@@ -68,6 +68,16 @@ class DqnNetwork : public GpuTest {
     scene_ = std::make_unique<render::GpuScene>(ctx(), asset_);
     return std::make_unique<guiding::DqnGuide>(ctx(), g, *scene_, 256);
   }
+  // Normal weights of deviation `sigma` into both copies (larger than the initial ones, so
+  // the ReLUs cut and the outputs spread); returns them.
+  static std::vector<float> uploadRandomWeights(guiding::DqnGuide& guide, std::mt19937& rng,
+                                                float sigma) {
+    std::normal_distribution<float> normal(0.0f, sigma);
+    std::vector<float> w(guide.stats().parameters);
+    for (float& x : w) x = normal(rng);
+    guide.uploadWeights(w);
+    return w;
+  }
   static DqnRecord randomRecord(std::mt19937& rng, uint32_t strata) {
     std::uniform_real_distribution<float> u(0.0f, 1.0f);
     DqnRecord r{};
@@ -97,10 +107,7 @@ TEST_F(DqnNetwork, ForwardPassMatchesTheCpuReference) {
   auto guide = makeGuide(dqnSettings());
   // Weights larger than the initial ones, so the ReLUs cut and the outputs spread.
   std::mt19937 rng(5);
-  std::normal_distribution<float> normal(0.0f, 0.4f);
-  std::vector<float> w(guide->stats().parameters);
-  for (float& x : w) x = normal(rng);
-  guide->uploadWeights(w);
+  const std::vector<float> w = uploadRandomWeights(*guide, rng, 0.4f);
   CpuNetwork ref{guide->shape(), std::vector<double>(w.begin(), w.end())};
   std::vector<DqnRecord> states;
   for (int i = 0; i < 200; ++i) states.push_back(randomRecord(rng, 16));
@@ -128,10 +135,7 @@ TEST_F(DqnNetwork, BakedGridRowsAreTheNetworksCdfAtTheCellCentres) {
   g.dqnGrid = 3;
   auto guide = makeGuide(g);
   std::mt19937 rng(7);
-  std::normal_distribution<float> normal(0.0f, 0.4f);
-  std::vector<float> w(guide->stats().parameters);
-  for (float& x : w) x = normal(rng);
-  guide->uploadWeights(w);  // bakes the grid
+  const std::vector<float> w = uploadRandomWeights(*guide, rng, 0.4f);  // bakes the grid
   CpuNetwork ref{guide->shape(), std::vector<double>(w.begin(), w.end())};
   const uint32_t strata = 16, rows = shared::dqnGridRows(3);
   const std::vector<float> cdf = guide->readGridRows();
@@ -172,10 +176,7 @@ TEST_F(DqnNetwork, BackwardPassMatchesFiniteDifferences) {
   g.dqnBatch = 64;
   auto guide = makeGuide(g);
   std::mt19937 rng(9);
-  std::normal_distribution<float> normal(0.0f, 0.3f);
-  std::vector<float> w(guide->stats().parameters);
-  for (float& x : w) x = normal(rng);
-  guide->uploadWeights(w);
+  const std::vector<float> w = uploadRandomWeights(*guide, rng, 0.3f);
   const DqnShape s = guide->shape();
   CpuNetwork ref{s, std::vector<double>(w.begin(), w.end())};
   std::vector<DqnRecord> ring(guide->capacity());
