@@ -34,14 +34,16 @@ namespace fs = std::filesystem;
 constexpr const char* kName = "bench_traversal_vs_embree";
 constexpr const char* kUsage =
     "usage: bench_traversal_vs_embree [SCENE.gltf ...] [--out FILE.json] [--quick] [--reps N]\n"
-    "                                 [--threads N]\n"
+    "                                 [--threads N] [--two-level]\n"
     "  SCENE      a glTF path, or the file name of a default scene or of one in assets/\n"
     "             (default: every shipped scene and the 1M-triangle\n"
     "             MetalRoughSpheresNoTextures sample)\n"
     "  --out      also write every figure as JSON\n"
     "  --quick    320x180 rays and 3 repetitions (default 640x360 and 9)\n"
     "  --reps N   repetitions per ray set (median reported)\n"
-    "  --threads  Embree's threads (default: LP_NUM_THREADS, else the core count, as lavapipe)\n";
+    "  --threads  Embree's threads (default: LP_NUM_THREADS, else the core count, as lavapipe)\n"
+    "  --two-level  qlight keeps every instance in its top level (no merged BLAS of the\n"
+    "             fixed instances), as it traced before 2026-12-04\n";
 
 const char* kDefaultScenes[] = {
     "assets/cornell_box.gltf",
@@ -62,6 +64,7 @@ struct Options {
   bool quick = false;
   uint32_t reps = 0;  // 0: the mode's default
   unsigned threads = 0;
+  bool twoLevel = false;
 };
 
 [[noreturn]] void fail(const std::string& message, int code = 2) {
@@ -105,6 +108,8 @@ Options parse(int argc, char** argv) {
       o.quick = true;
     } else if (a == "--reps") {
       o.reps = positive(a, value());
+    } else if (a == "--two-level") {
+      o.twoLevel = true;
     } else if (a == "--threads") {
       o.threads = positive(a, value());
     } else if (a.rfind("-", 0) == 0) {
@@ -184,6 +189,8 @@ SceneResult runScene(const gpu::Context& ctx, const fs::path& path, const Option
                      uint32_t width, uint32_t height) {
   std::fprintf(stderr, "%s: %s: loading\n", kName, path.filename().c_str());
   WorldScene scene = loadWorldScene(path, float(width) / float(height));
+  if (o.twoLevel)
+    for (render::MeshDraw& d : scene.draws) d.fixed = false;
   SceneResult r;
   r.name = scene.name;
   r.path = fs::relative(path, QLIGHT_SOURCE_DIR).string();

@@ -78,6 +78,21 @@ Aabb transformBox(const glm::dmat4& m, const Aabb& box) {
   return Aabb{glm::vec3(lo - pad), glm::vec3(hi + pad)};
 }
 
+// One instance's 8 texels (layout: bvh_types.h).
+void writeInstanceTexels(glm::vec4* texels, const glm::mat4& worldFromObject,
+                         const glm::mat4& objectFromWorld, uint32_t rootRef,
+                         uint32_t triangleOffset, uint32_t customIndex, uint32_t blas) {
+  for (int r = 0; r < 3; ++r) {  // glm is column-major: m[column][row]
+    const glm::mat4& inv = objectFromWorld;
+    const glm::mat4& m = worldFromObject;
+    texels[shared::kBvhInstanceObjectFromWorld + r] =
+        glm::vec4(inv[0][r], inv[1][r], inv[2][r], inv[3][r]);
+    texels[shared::kBvhInstanceWorldFromObject + r] = glm::vec4(m[0][r], m[1][r], m[2][r], m[3][r]);
+  }
+  texels[shared::kBvhInstanceInfo] =
+      glm::vec4(bits(rootRef), bits(triangleOffset), bits(customIndex), bits(blas));
+}
+
 }  // namespace
 
 bool isDegenerateTriangle(const glm::vec3& p0, const glm::vec3& p1, const glm::vec3& p2) {
@@ -169,6 +184,7 @@ void SceneBvh::addMeshes(std::span<const MeshInput> meshes, const BuildOptions& 
 
 uint32_t SceneBvh::appendMesh(MeshTree built, std::span<const glm::vec3> positions,
                               std::span<const uint32_t> indices) {
+  dropMerged();  // mesh triangles come first; the merged ones are copied after them
   const std::vector<PrimRef>& prims = built.prims;
   const BuiltTree& tree = built.tree;
   BlasInfo info;
@@ -203,8 +219,12 @@ uint32_t SceneBvh::appendMesh(MeshTree built, std::span<const glm::vec3> positio
     blasNodeEnd_ += info.nodeCount;
   }
   blases_.push_back(info);
+  blasVersions_.push_back(0);
+  blasTriangleEnd_ = static_cast<uint32_t>(flat_.triangleIndices.size());
+  mergedNodeEnd_ = blasNodeEnd_;
+  ++trianglesVersion_;
   topLevel_ = TopLevelInfo{};
-  topLevel_.nodeOffset = blasNodeEnd_;
+  topLevel_.nodeOffset = mergedNodeEnd_;
   writeHeader();
   return static_cast<uint32_t>(blases_.size() - 1);
 }
@@ -217,6 +237,8 @@ void SceneBvh::refitMesh(uint32_t index, std::span<const glm::vec3> positions,
         "engine/bvh/scene_bvh.cpp: refit with " + std::to_string(indices.size() / 3) +
         " triangles of a mesh built with " + std::to_string(info.meshTriangleCount));
   if (info.rootRef == 0) return;
+  ++blasVersions_[index];  // merged copies of it go stale: the next top-level rebuild redoes them
+  ++trianglesVersion_;
   for (uint32_t k = info.triangleOffset; k < info.triangleOffset + info.triangleCount; ++k) {
     const uint32_t* tri = &indices[3 * std::size_t{flat_.triangleIndices[k]}];
     for (int c = 0; c < 3; ++c) {
@@ -258,10 +280,9 @@ void SceneBvh::refitMesh(uint32_t index, std::span<const glm::vec3> positions,
 
 void SceneBvh::rebuildTopLevel(std::span<const Instance> instances) {
   instanceCount_ = static_cast<uint32_t>(instances.size());
-  flat_.instances.assign(instances.size() * kBvhInstanceTexels, glm::vec4(0.0f));
-  std::vector<PrimRef> prims;
-  prims.reserve(instances.size());
-  Aabb sceneBounds;
+  std::vector<bool> hittable(instances.size(), false);
+  std::vector<Aabb> worldBoxes(instances.size());
+  std::vector<glm::vec4> texels(instances.size() * kBvhInstanceTexels, glm::vec4(0.0f));
   for (uint32_t i = 0; i < instanceCount_; ++i) {
     const Instance& instance = instances[i];
     if (instance.blas >= blases_.size()) {
@@ -280,32 +301,49 @@ void SceneBvh::rebuildTopLevel(std::span<const Instance> instances) {
                      std::isfinite(worldFromObject[c][r]);
       }
     }
-    bool hittable = invertible && blas.rootRef != 0;
+    hittable[i] = invertible && blas.rootRef != 0;
 
-    glm::vec4* texels = &flat_.instances[std::size_t{i} * kBvhInstanceTexels];
     glm::mat4 inverse = invertible ? glm::mat4(objectFromWorld) : glm::mat4(0.0f);
-    for (int r = 0; r < 3; ++r) {  // glm is column-major: m[column][row]
-      texels[shared::kBvhInstanceObjectFromWorld + r] =
-          glm::vec4(inverse[0][r], inverse[1][r], inverse[2][r], inverse[3][r]);
-      const glm::mat4& m = instance.worldFromObject;
-      texels[shared::kBvhInstanceWorldFromObject + r] =
-          glm::vec4(m[0][r], m[1][r], m[2][r], m[3][r]);
+    writeInstanceTexels(&texels[std::size_t{i} * kBvhInstanceTexels], instance.worldFromObject,
+                        inverse, hittable[i] ? blas.rootRef : 0, blas.triangleOffset,
+                        instance.customIndex, instance.blas);
+    if (hittable[i]) {
+      worldBoxes[i] = transformBox(worldFromObject, blas.rootChildren[0]);
+      worldBoxes[i].grow(transformBox(worldFromObject, blas.rootChildren[1]));
     }
-    texels[shared::kBvhInstanceInfo] =
-        glm::vec4(bits(hittable ? blas.rootRef : 0), bits(blas.triangleOffset),
-                  bits(instance.customIndex), bits(instance.blas));
-    if (!hittable) continue;
-
-    Aabb world = transformBox(worldFromObject, blas.rootChildren[0]);
-    world.grow(transformBox(worldFromObject, blas.rootChildren[1]));
-    sceneBounds.grow(world);
-    prims.push_back(PrimRef{world.min, i, world.max});
   }
 
-  flat_.nodes.resize(std::size_t{blasNodeEnd_} * kBvhNodeTexels);
+  std::vector<MergedEntry> merge = chooseMerged(instances, hittable);
+  if (merge != mergedFrom_) buildMerged(std::move(merge));
+  std::vector<bool> inMerged(instances.size(), false);
+  for (const MergedEntry& e : mergedFrom_) inMerged[e.instance] = true;
+
+  // The top level's leaves: the instances left out of the merged BLAS, and one identity
+  // instance (after the caller's) that holds the merged BLAS.
+  std::vector<PrimRef> prims;
+  prims.reserve(instances.size() + 1);
+  Aabb sceneBounds;
+  for (uint32_t i = 0; i < instanceCount_; ++i) {
+    if (!hittable[i]) continue;
+    sceneBounds.grow(worldBoxes[i]);
+    if (!inMerged[i]) prims.push_back(PrimRef{worldBoxes[i].min, i, worldBoxes[i].max});
+  }
+  if (merged_.rootRef != 0) {
+    texels.resize(texels.size() + kBvhInstanceTexels, glm::vec4(0.0f));
+    writeInstanceTexels(&texels[std::size_t{instanceCount_} * kBvhInstanceTexels], glm::mat4(1.0f),
+                        glm::mat4(1.0f), merged_.rootRef, blasTriangleEnd_,
+                        shared::kBvhInvalidIndex, shared::kBvhInvalidIndex);
+    Aabb box = transformBox(glm::dmat4(1.0), mergedRootChildren_[0]);
+    box.grow(transformBox(glm::dmat4(1.0), mergedRootChildren_[1]));
+    prims.push_back(PrimRef{box.min, instanceCount_, box.max});
+  }
+  flat_.instances = std::move(texels);
+
+  flat_.nodes.resize(std::size_t{mergedNodeEnd_} * kBvhNodeTexels);
   topLevel_ = TopLevelInfo{};
-  topLevel_.nodeOffset = blasNodeEnd_;
-  topLevel_.hittableInstances = static_cast<uint32_t>(prims.size());
+  topLevel_.nodeOffset = mergedNodeEnd_;
+  topLevel_.hittableInstances =
+      static_cast<uint32_t>(std::count(hittable.begin(), hittable.end(), true));
   if (!prims.empty()) {
     BuildOptions options;
     options.maxLeafSize = 1;
@@ -317,7 +355,7 @@ void SceneBvh::rebuildTopLevel(std::span<const Instance> instances) {
     BuiltTree tree = buildSah(prims, options);  // reorders prims: leaf i holds prims[i]
     auto rebase = [&](uint32_t ref) {
       if (ref & kBvhLeafBit) return kBvhLeafBit | prims[shared::bvhLeafFirst(ref)].index;
-      return ref + blasNodeEnd_;
+      return ref + mergedNodeEnd_;
     };
     appendNodes(flat_.nodes, tree, rebase);
     topLevel_.rootRef = rebase(tree.rootRef);
@@ -328,11 +366,99 @@ void SceneBvh::rebuildTopLevel(std::span<const Instance> instances) {
   writeHeader();
 }
 
+std::vector<SceneBvh::MergedEntry> SceneBvh::chooseMerged(std::span<const Instance> instances,
+                                                          const std::vector<bool>& hittable) const {
+  std::vector<uint32_t> uses(blases_.size(), 0);
+  for (uint32_t i = 0; i < instances.size(); ++i)
+    if (instances[i].fixed && hittable[i]) ++uses[instances[i].blas];
+  std::vector<MergedEntry> out;
+  uint64_t triangles = 0;
+  for (int pass = 0; pass < 2; ++pass) {  // meshes used once first, then shared ones
+    for (uint32_t i = 0; i < instances.size(); ++i) {
+      const Instance& inst = instances[i];
+      if (!inst.fixed || !hittable[i] || (uses[inst.blas] > 1) != (pass == 1)) continue;
+      const uint32_t count = blases_[inst.blas].triangleCount;
+      if (pass == 1 && triangles + count > maxMergedTriangles_) continue;
+      triangles += count;
+      out.push_back({i, inst.blas, blasVersions_[inst.blas], inst.worldFromObject});
+    }
+  }
+  std::sort(out.begin(), out.end(),
+            [](const MergedEntry& a, const MergedEntry& b) { return a.instance < b.instance; });
+  // One instance gains nothing from a copy of its own tree: leave it in the top level.
+  if (out.size() < 2) out.clear();
+  return out;
+}
+
+void SceneBvh::dropMerged() {
+  flat_.triangles.resize(std::size_t{blasTriangleEnd_} * shared::kBvhTriangleTexels);
+  flat_.triangleIndices.resize(blasTriangleEnd_);
+  flat_.nodes.resize(std::size_t{blasNodeEnd_} * kBvhNodeTexels);
+  if (merged_.rootRef != 0) ++trianglesVersion_;
+  mergedNodeEnd_ = blasNodeEnd_;
+  mergedFrom_.clear();
+  const uint64_t builds = merged_.builds;
+  merged_ = MergedInfo{};
+  merged_.builds = builds;
+}
+
+void SceneBvh::buildMerged(std::vector<MergedEntry> entries) {
+  dropMerged();
+  mergedFrom_ = std::move(entries);
+  if (mergedFrom_.empty()) return;
+  // World-space copies of the instances' triangles. Each vertex is transformed on its own
+  // (in double, rounded once), so triangles that share a vertex still share it exactly and
+  // the watertight test keeps their common edges closed.
+  std::vector<glm::vec4> world;  // 3 texels a triangle, in input order
+  std::vector<PrimRef> prims;
+  for (const MergedEntry& e : mergedFrom_) {
+    const BlasInfo& blas = blases_[e.blas];
+    const glm::dmat4 m(e.worldFromObject);
+    for (uint32_t k = blas.triangleOffset; k < blas.triangleOffset + blas.triangleCount; ++k) {
+      glm::vec3 p[3];
+      for (int c = 0; c < 3; ++c) {
+        const glm::vec3 q = glm::vec3(flat_.triangles[3 * std::size_t{k} + c]);
+        p[c] = glm::vec3(m * glm::dvec4(q, 1.0));
+      }
+      if (isDegenerateTriangle(p[0], p[1], p[2]) || !finite(p[0]) || !finite(p[1]) || !finite(p[2]))
+        continue;  // flattened by the transform's rounding: it cannot be hit
+      prims.push_back(PrimRef{glm::min(p[0], glm::min(p[1], p[2])),
+                              static_cast<uint32_t>(world.size() / 3),
+                              glm::max(p[0], glm::max(p[1], p[2]))});
+      world.push_back(point(p[0], flat_.triangleIndices[k]));
+      world.push_back(point(p[1], e.instance + 1u));  // owner + 1
+      world.push_back(point(p[2], 0));
+    }
+  }
+  ++merged_.builds;
+  merged_.instances = static_cast<uint32_t>(mergedFrom_.size());
+  if (prims.empty()) return;
+  if (uint64_t{blasTriangleEnd_} + prims.size() > shared::kBvhMaxTriangles) {
+    throw std::runtime_error("engine/bvh/scene_bvh.cpp: more than 2^28 triangles in all meshes");
+  }
+  BuiltTree tree = buildSah(prims, BuildOptions{});
+  auto rebase = [&](uint32_t ref) { return globalRef(ref, blasNodeEnd_, blasTriangleEnd_); };
+  appendNodes(flat_.nodes, tree, rebase);
+  for (const PrimRef& prim : prims) {
+    for (int c = 0; c < 3; ++c) flat_.triangles.push_back(world[3 * std::size_t{prim.index} + c]);
+    flat_.triangleIndices.push_back(std::bit_cast<uint32_t>(world[3 * std::size_t{prim.index}].w));
+  }
+  merged_.rootRef = rebase(tree.rootRef);
+  merged_.nodeCount = static_cast<uint32_t>(tree.nodes.size());
+  merged_.triangleCount = static_cast<uint32_t>(prims.size());
+  const bool innerRoot = !(tree.rootRef & kBvhLeafBit);
+  const Aabb bounds = padded(tree.bounds);
+  mergedRootChildren_[0] = innerRoot ? padded(tree.nodes[0].box[0]) : bounds;
+  mergedRootChildren_[1] = innerRoot ? padded(tree.nodes[0].box[1]) : bounds;
+  mergedNodeEnd_ = blasNodeEnd_ + merged_.nodeCount;
+  ++trianglesVersion_;
+}
+
 void SceneBvh::writeHeader() {
   if (flat_.nodes.size() < kBvhNodeTexels) flat_.nodes.resize(kBvhNodeTexels);
   const Aabb& b = topLevel_.bounds;
   bool hasBounds = !b.empty();
-  flat_.nodes[0] = glm::vec4(bits(topLevel_.rootRef), bits(instanceCount_), bits(blasNodeEnd_),
+  flat_.nodes[0] = glm::vec4(bits(topLevel_.rootRef), bits(instanceCount_), bits(mergedNodeEnd_),
                              bits(static_cast<uint32_t>(flat_.nodes.size() / kBvhNodeTexels)));
   flat_.nodes[shared::kBvhHeaderSceneMin] =
       point(hasBounds ? b.min : glm::vec3(0.0f), static_cast<uint32_t>(blases_.size()));

@@ -23,6 +23,17 @@ struct Instance {
   glm::mat4 worldFromObject{1.0f};
   uint32_t blas = 0;         // index returned by addMesh
   uint32_t customIndex = 0;  // the renderer's own id, stored in the instance texels
+  // Never moves and its mesh is never deformed: its triangles may join the merged BLAS.
+  bool fixed = false;
+};
+
+// The merged BLAS: the fixed instances' triangles in world space, in one tree.
+struct MergedInfo {
+  uint32_t rootRef = 0;  // 0 when no instance is merged
+  uint32_t nodeCount = 0;
+  uint32_t triangleCount = 0;
+  uint32_t instances = 0;  // how many instances it holds
+  uint64_t builds = 0;     // how many times it was built (it is kept while its set stays)
 };
 
 struct BlasInfo {
@@ -85,25 +96,59 @@ class SceneBvh {
   // Rebuilds the top level and the instance array; BLASes stay untouched.
   // Instances with a singular or non-finite transform, or an empty mesh, get
   // their texels but cannot be hit. Throws on a bad blas index.
+  // Fixed instances (see Instance::fixed) go into the merged BLAS, which is built
+  // again only when the set of fixed instances, their transforms or their meshes
+  // change; hits in it report the instance a triangle came from, so callers see
+  // the same instance and primitive either way. Instances of a mesh that several
+  // fixed instances share are merged only while the merged BLAS stays under
+  // maxMergedTriangles (the copies cost memory where the instancing saved it).
   void rebuildTopLevel(std::span<const Instance> instances);
+
+  static constexpr uint32_t kDefaultMaxMergedTriangles = 1u << 21;
+  // Takes effect at the next rebuildTopLevel.
+  void setMaxMergedTriangles(uint32_t count) { maxMergedTriangles_ = count; }
 
   const FlatBvh& flat() const { return flat_; }
   const BlasInfo& blas(uint32_t index) const { return blases_.at(index); }
   uint32_t blasCount() const { return static_cast<uint32_t>(blases_.size()); }
   const TopLevelInfo& topLevel() const { return topLevel_; }
-  // First node of the top level; nodes before it are the header and BLASes.
-  uint32_t topLevelNodeOffset() const { return blasNodeEnd_; }
+  const MergedInfo& merged() const { return merged_; }
+  // First node of the top level; nodes before it are the header, the BLASes and the merged BLAS.
+  uint32_t topLevelNodeOffset() const { return mergedNodeEnd_; }
+  // Grows whenever flat().triangles changes (a mesh added or refitted, the merged BLAS rebuilt).
+  uint64_t trianglesVersion() const { return trianglesVersion_; }
 
  private:
+  // What the merged BLAS was built from; built again when this changes.
+  struct MergedEntry {
+    uint32_t instance;
+    uint32_t blas;
+    uint64_t blasVersion;
+    glm::mat4 worldFromObject;
+    bool operator==(const MergedEntry&) const = default;
+  };
+
   uint32_t appendMesh(MeshTree built, std::span<const glm::vec3> positions,
                       std::span<const uint32_t> indices);
+  std::vector<MergedEntry> chooseMerged(std::span<const Instance> instances,
+                                        const std::vector<bool>& hittable) const;
+  void buildMerged(std::vector<MergedEntry> entries);
+  void dropMerged();
   void writeHeader();
 
   FlatBvh flat_;
   std::vector<BlasInfo> blases_;
+  std::vector<uint64_t> blasVersions_;  // grows with each refit
   TopLevelInfo topLevel_;
+  MergedInfo merged_;
+  std::vector<MergedEntry> mergedFrom_;
+  Aabb mergedRootChildren_[2];
   uint32_t blasNodeEnd_ = 1;  // node 0 is the header
+  uint32_t mergedNodeEnd_ = 1;
+  uint32_t blasTriangleEnd_ = 0;
   uint32_t instanceCount_ = 0;
+  uint64_t trianglesVersion_ = 0;
+  uint32_t maxMergedTriangles_ = kDefaultMaxMergedTriangles;
 };
 
 }  // namespace qlight::bvh

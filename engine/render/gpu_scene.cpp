@@ -318,8 +318,10 @@ bool GpuScene::applyDeformations(const std::vector<DeformedDraw>& deformed) {
 void GpuScene::update(const SceneDraw& draw) {
   for (const MeshDraw& d : draw.meshes)
     if (d.mesh >= asset_.meshes.size()) throw std::out_of_range("mesh draw names no mesh");
-  const bool trianglesMoved = applyDeformations(draw.deformed) || !bvhTris_;
+  applyDeformations(draw.deformed);
   accel_.buildInstances(draw.meshes);
+  const bool trianglesMoved = !bvhTris_ || accel_.trianglesVersion() != uploadedTriangles_;
+  uploadedTriangles_ = accel_.trianglesVersion();
   surfaceArea_ = 0.0f;
   for (const MeshDraw& d : draw.meshes) {
     const scene::MeshAsset& mesh = asset_.meshes[d.mesh];
@@ -355,7 +357,7 @@ void GpuScene::update(const SceneDraw& draw) {
       std::make_unique<gpu::BufferView>(ctx_, *bvhNodes_, VK_FORMAT_R32G32B32A32_SFLOAT);
   bvhInstancesView_ =
       std::make_unique<gpu::BufferView>(ctx_, *bvhInstances_, VK_FORMAT_R32G32B32A32_SFLOAT);
-  if (trianglesMoved) {  // rigid motion leaves the object-space triangles as they are
+  if (trianglesMoved) {  // rigid motion of unmerged instances leaves the triangles as they are
     bvhTrisView_.reset();
     bvhTris_ = makeBuffer(ctx_, accel_.triangleTexels(), "bvh.triangles", texel);
     bvhTrisView_ =

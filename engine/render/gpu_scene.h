@@ -89,6 +89,7 @@ class GpuScene {
   std::vector<uint64_t> poseVersions_;  // per mesh: the DeformedDraw version uploaded
   std::vector<std::vector<glm::vec3>> posedPositions_;  // per mesh; empty until it deforms
   SceneAccel accel_;
+  uint64_t uploadedTriangles_ = 0;  // accel_.trianglesVersion() of bvhTris_
   std::vector<shared::GpuLight> lights_;
   uint32_t lightCount_ = 0;
   uint32_t triangleCount_ = 0;

@@ -29,9 +29,11 @@ void SceneAccel::buildInstances(const std::vector<MeshDraw>& draws) {
   std::vector<bvh::Instance> instances;
   instances.reserve(draws.size());
   for (uint32_t i = 0; i < draws.size(); ++i)
-    instances.push_back({draws[i].worldFromObject, draws[i].mesh, i});
+    instances.push_back({draws[i].worldFromObject, draws[i].mesh, i, draws[i].fixed});
   impl_->bvh.rebuildTopLevel(instances);
 }
+
+uint64_t SceneAccel::trianglesVersion() const { return impl_->bvh.trianglesVersion(); }
 
 const std::vector<glm::vec4>& SceneAccel::nodeTexels() const { return impl_->bvh.flat().nodes; }
 const std::vector<glm::vec4>& SceneAccel::triangleTexels() const {

@@ -24,6 +24,8 @@ class SceneAccel {
                  std::span<const uint32_t> indices);
   void buildInstances(const std::vector<MeshDraw>& draws);
 
+  // Grows whenever triangleTexels() changes (a refit, the merged static geometry rebuilt).
+  uint64_t trianglesVersion() const;
   const std::vector<glm::vec4>& nodeTexels() const;
   const std::vector<glm::vec4>& triangleTexels() const;
   const std::vector<glm::vec4>& instanceTexels() const;

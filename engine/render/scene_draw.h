@@ -12,6 +12,9 @@ namespace qlight::render {
 struct MeshDraw {
   uint32_t mesh = 0;
   glm::mat4 worldFromObject{1.0f};
+  // Neither the node nor an ancestor is animated, and no node deforms the mesh: the BVH may
+  // copy its triangles into world space once (SceneBvh's merged BLAS).
+  bool fixed = false;
 };
 
 // A mesh whose vertices its skin or morph weights re-posed, in the space its MeshDraws place

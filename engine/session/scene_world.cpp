@@ -3,6 +3,20 @@
 #include "engine/scene/components.h"
 
 namespace qlight::session {
+namespace {
+
+// Whether an animation channel moves the entity or one of its ancestors.
+bool movesOrAncestorMoves(const ecs::Registry& r, ecs::Entity e) {
+  for (int depth = 0; e != ecs::kNullEntity && depth < 1024; ++depth) {
+    if (const scene::AnimatedNode* a = r.tryGet<scene::AnimatedNode>(e))
+      if (a->translation.valid() || a->rotation.valid() || a->scale.valid()) return true;
+    const scene::Parent* parent = r.tryGet<scene::Parent>(e);
+    e = parent ? parent->entity : ecs::kNullEntity;
+  }
+  return false;
+}
+
+}  // namespace
 
 SceneWorld::SceneWorld(const scene::SceneAsset& asset, float aspect) : asset_(asset) {
   instance_ = scene::instantiate(asset, registry_, aspect);
@@ -11,7 +25,7 @@ SceneWorld::SceneWorld(const scene::SceneAsset& asset, float aspect) : asset_(as
   scheduler_.add("extract")
       .phase(ecs::Phase::Extract)
       .reads<scene::WorldTransform, scene::MeshInstance, scene::PunctualLight, scene::Skinned,
-             scene::DeformedMesh>()
+             scene::DeformedMesh, scene::AnimatedNode, scene::Parent>()
       .writes<render::SceneDraw>()
       .run([this](ecs::Registry& r) { extract(r); });
   scheduler_.add("transforms")
@@ -46,10 +60,16 @@ void SceneWorld::extract(ecs::Registry& r) {
   deformed.clearDirty();
   if (!moved_ && !draw_.meshes.empty()) return;
   draw_ = {};
+  std::vector<bool> deformedMesh(asset_.meshes.size(), false);
+  r.view<const scene::DeformedMesh>().each([&](const scene::DeformedMesh& d) {
+    if (d.mesh < deformedMesh.size()) deformedMesh[d.mesh] = true;
+  });
   r.view<const scene::WorldTransform, const scene::MeshInstance>().each(
       [&](ecs::Entity e, const scene::WorldTransform& w, const scene::MeshInstance& m) {
         const bool skinned = r.has<scene::Skinned>(e);  // already in world space
-        draw_.meshes.push_back({m.mesh, skinned ? glm::mat4(1.0f) : w.worldFromLocal});
+        const bool fixed = !skinned && !(m.mesh < deformedMesh.size() && deformedMesh[m.mesh]) &&
+                           !movesOrAncestorMoves(r, e);
+        draw_.meshes.push_back({m.mesh, skinned ? glm::mat4(1.0f) : w.worldFromLocal, fixed});
       });
   r.view<const scene::DeformedMesh>().each([&](const scene::DeformedMesh& d) {
     if (d.version != 0) draw_.deformed.push_back({d.mesh, d.version, d.positions, d.normals});

@@ -226,13 +226,15 @@ QL_FN bool bvhTrace(vec3 origin, vec3 dir, float tMax, bool anyHit, QL_OUT(BvhHi
         vec4 t1 = QL_BVH_TRI(texel + 1u);
         vec4 t2 = QL_BVH_TRI(texel + 2u);
         vec3 tuv = vec3(0.0f);
+        uint owner = floatBitsToUint(t1.w);  // instance + 1 in the merged BLAS, else 0
+        owner = owner == 0u ? instance : owner - 1u;
         if (bvhIntersectTriangle(local, vec3(t0), vec3(t1), vec3(t2), hit.t, tuv) &&
-            QL_BVH_ACCEPT_HIT(instance, floatBitsToUint(t0.w), tuv.y, tuv.z)) {
+            QL_BVH_ACCEPT_HIT(owner, floatBitsToUint(t0.w), tuv.y, tuv.z)) {
           found = true;
           hit.t = tuv.x;
           hit.u = tuv.y;
           hit.v = tuv.z;
-          hit.instance = instance;
+          hit.instance = owner;
           hit.primitive = floatBitsToUint(t0.w);
           if (anyHit) return true;
         }

@@ -21,10 +21,16 @@
 //                (firstTriangle indexes the concatenated triangle array)
 //     TLAS leaf: kBvhLeafBit | instanceIndex (one instance per leaf)
 // triangles: 3 texels per triangle, in leaf order, object space:
-//     (v0.xyz, originalTriangleIndex bits), (v1.xyz, 0), (v2.xyz, 0)
+//     (v0.xyz, originalTriangleIndex bits), (v1.xyz, owner bits), (v2.xyz, 0)
 //   originalTriangleIndex is the triangle's index within its mesh's index
 //   buffer (FlatBvh::triangleIndices holds the same numbers as a uint array).
-// instances: 8 texels per instance (in the order given to rebuildTopLevel):
+//   owner is 0 in a mesh's own BLAS (a hit belongs to the instance the ray
+//   entered). The fixed instances' triangles are also copied, in world space,
+//   into one merged BLAS after the meshes' (fewer, tighter boxes than a top
+//   level over overlapping instances: Embree's flat build); there owner is 1 +
+//   the instance each triangle came from.
+// instances: 8 texels per instance (in the order given to rebuildTopLevel,
+//   then one identity instance whose BLAS is the merged one, when there is one):
 //     texels 0-2: objectFromWorld rows (3x4: dot(row.xyz, p) + row.w)
 //     texels 3-5: worldFromObject rows
 //     texel 6:    (blasRootRef, blasTriangleOffset, customIndex, blasIndex) bits

@@ -66,7 +66,8 @@ bvh::SceneBvh bvhOf(const scene::SceneAsset& asset, const render::SceneDraw& dra
   }
   std::vector<bvh::Instance> instances;
   for (uint32_t i = 0; i < draw.meshes.size(); ++i)
-    instances.push_back({draw.meshes[i].worldFromObject, draw.meshes[i].mesh, i});
+    instances.push_back(
+        {draw.meshes[i].worldFromObject, draw.meshes[i].mesh, i, draw.meshes[i].fixed});
   out.rebuildTopLevel(instances);
   return out;
 }
@@ -84,6 +85,7 @@ TEST(DeformedGeometry, SimpleInstancingHasOneTopLevelInstancePerInstanceOfOneMes
   const bvh::SceneBvh bvh = bvhOf(asset, draw, positions);
   EXPECT_EQ(bvh.blasCount(), 1u);
   EXPECT_EQ(bvh.topLevel().hittableInstances, 125u);
+  EXPECT_EQ(bvh.merged().instances, 125u);  // none moves: all copied into the merged BLAS
   // README: the first instance is the unit cube, the last one sits at (10, 10, 10), scaled 2.
   EXPECT_EQ(glm::vec3(draw.meshes.front().worldFromObject[3]), glm::vec3(0.0f));
   EXPECT_NEAR(glm::length(glm::vec3(draw.meshes.back().worldFromObject[3]) - glm::vec3(10)), 0,
@@ -122,6 +124,8 @@ TEST(DeformedGeometry, CesiumManRefittedAfterSkinningTracesLikeBruteForce) {
     ASSERT_EQ(draw.deformed.size(), 1u);
     std::vector<std::vector<glm::vec3>> positions;
     const bvh::SceneBvh bvh = bvhOf(asset, draw, positions);
+    for (const render::MeshDraw& d : draw.meshes) EXPECT_FALSE(d.fixed);  // skinned
+    EXPECT_EQ(bvh.merged().rootRef, 0u);
     bvh::CpuBvhBinding binding(bvh.flat());
     // Rays from a ring around the character towards random points of its (posed) bounds.
     scene::Bounds box;
@@ -144,6 +148,37 @@ TEST(DeformedGeometry, CesiumManRefittedAfterSkinningTracesLikeBruteForce) {
       hits += found;
     }
     EXPECT_GT(hits, 100u);
+  }
+}
+
+TEST(DeformedGeometry, OnlyNodesThatNoAnimationMovesAreFixed) {
+  // animated_light.gltf: the room and the blocks stand still, node 3's translation is animated.
+  const scene::SceneAsset asset =
+      gltf::loadGltf(std::string(QLIGHT_SOURCE_DIR) + "/assets/animated_light.gltf");
+  session::SceneWorld world(asset, 1.0f);
+  world.advance(0.5f);
+  const render::SceneDraw& draw = world.draw();
+  ASSERT_EQ(draw.meshes.size(), 3u);
+  for (const render::MeshDraw& d : draw.meshes) EXPECT_EQ(d.fixed, d.mesh != 2u) << d.mesh;
+  // The moving light stays an instance of its own BLAS; a ray at it still finds it.
+  std::vector<std::vector<glm::vec3>> positions;
+  const bvh::SceneBvh bvh = bvhOf(asset, draw, positions);
+  EXPECT_EQ(bvh.merged().instances, 2u);
+  bvh::CpuBvhBinding binding(bvh.flat());
+  for (uint32_t i = 0; i < draw.meshes.size(); ++i) {
+    const scene::MeshAsset& mesh = asset.meshes[draw.meshes[i].mesh];
+    const glm::vec3 centre(draw.meshes[i].worldFromObject *
+                           glm::vec4(0.5f * (mesh.boundsMin + mesh.boundsMax), 1));
+    for (glm::vec3 dir : {glm::vec3(0, -1, 0), glm::vec3(0.3f, 1, 0.2f), glm::vec3(1, 0.1f, 0)}) {
+      const glm::vec3 origin = centre + 0.25f * dir;
+      shared::BvhHit hit;
+      const bool found = shared::traceClosest(origin, dir, 1e30f, hit);
+      const Closest ref = bruteForce(asset, draw, positions, origin, dir);
+      ASSERT_EQ(found, ref.draw >= 0) << "draw " << i;
+      if (!found) continue;
+      EXPECT_EQ(int(hit.instance), ref.draw) << "draw " << i;
+      EXPECT_NEAR(hit.t, ref.t, 1e-4f * ref.t) << "draw " << i;
+    }
   }
 }
 
