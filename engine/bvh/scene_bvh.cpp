@@ -378,7 +378,7 @@ std::vector<SceneBvh::MergedEntry> SceneBvh::chooseMerged(std::span<const Instan
       const Instance& inst = instances[i];
       if (!inst.fixed || !hittable[i] || (uses[inst.blas] > 1) != (pass == 1)) continue;
       const uint32_t count = blases_[inst.blas].triangleCount;
-      if (pass == 1 && triangles + count > maxMergedTriangles_) continue;
+      if (triangles + count > maxMergedTriangles_) continue;
       triangles += count;
       out.push_back({i, inst.blas, blasVersions_[inst.blas], inst.worldFromObject});
     }

@@ -99,9 +99,10 @@ class SceneBvh {
   // Fixed instances (see Instance::fixed) go into the merged BLAS, which is built
   // again only when the set of fixed instances, their transforms or their meshes
   // change; hits in it report the instance a triangle came from, so callers see
-  // the same instance and primitive either way. Instances of a mesh that several
-  // fixed instances share are merged only while the merged BLAS stays under
-  // maxMergedTriangles (the copies cost memory where the instancing saved it).
+  // the same instance and primitive either way. The copy holds at most
+  // maxMergedTriangles: instances of meshes used once go first, then those of
+  // meshes that several fixed instances share (their copies cost memory where
+  // the instancing saved it); the rest stay instances of their BLAS.
   void rebuildTopLevel(std::span<const Instance> instances);
 
   static constexpr uint32_t kDefaultMaxMergedTriangles = 1u << 21;

@@ -7,6 +7,7 @@
 #include <cstring>
 #include <stdexcept>
 
+#include "engine/bvh/scene_bvh.h"
 #include "engine/render/environment_tables.h"
 #include "engine/render/scene_packing.h"
 #include "engine/render/texture_mips.h"
@@ -60,6 +61,16 @@ GpuScene::GpuScene(const gpu::Context& ctx, const scene::SceneAsset& asset,
   uploadEnvironment();
   const auto blasStart = Clock::now();
   accel_.buildMeshes(asset.meshes);
+  {
+    // The merged copy of the fixed instances' triangles shares the BVH's triangle buffer:
+    // keep it within what one texel buffer holds (requireGeometryFits counted the meshes').
+    uint64_t triangles = 0;
+    for (const scene::MeshAsset& m : asset.meshes) triangles += m.triangleCount();
+    const uint64_t texels = ctx.properties().limits.maxTexelBufferElements;
+    const uint64_t room = texels / 3 > triangles ? texels / 3 - triangles : 0;
+    accel_.setMaxMergedTriangles(
+        uint32_t(std::min<uint64_t>(room, bvh::SceneBvh::kDefaultMaxMergedTriangles)));
+  }
   blasBuildSeconds_ = std::chrono::duration<double>(Clock::now() - blasStart).count();
   buildSeconds_ = std::chrono::duration<double>(Clock::now() - start).count();
   poseVersions_.assign(asset.meshes.size(), 0);

@@ -20,6 +20,8 @@ void SceneAccel::buildMeshes(const std::vector<scene::MeshAsset>& meshes) {
   impl_->bvh.addMeshes(inputs);
 }
 
+void SceneAccel::setMaxMergedTriangles(uint32_t count) { impl_->bvh.setMaxMergedTriangles(count); }
+
 void SceneAccel::refitMesh(uint32_t mesh, std::span<const glm::vec3> positions,
                            std::span<const uint32_t> indices) {
   impl_->bvh.refitMesh(mesh, positions, indices);

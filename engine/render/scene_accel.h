@@ -19,6 +19,8 @@ class SceneAccel {
   SceneAccel& operator=(SceneAccel&&) noexcept;
 
   void buildMeshes(const std::vector<scene::MeshAsset>& meshes);
+  // The most triangles the merged BLAS of fixed instances may copy (SceneBvh).
+  void setMaxMergedTriangles(uint32_t count);
   // A deformed mesh's new positions (same indices): its BLAS is refitted.
   void refitMesh(uint32_t mesh, std::span<const glm::vec3> positions,
                  std::span<const uint32_t> indices);
