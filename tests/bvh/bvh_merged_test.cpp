@@ -107,16 +107,8 @@ TEST(BvhMerged, TwoRoomSceneMatchesBruteForce) {
 }
 
 TEST(BvhMerged, FixedAndMovingInstancesTogether) {
-  Scene scene;
-  scene.meshes = {randomSoup(1500, 3), randomSoup(800, 4, 4.0f, 0.01f, 0.5f)};
-  Random rng(5);
-  for (uint32_t i = 0; i < 12; ++i) {
-    glm::vec3 scale(rng.uniform(0.2f, 1.5f), rng.uniform(0.2f, 1.5f), rng.uniform(0.2f, 1.5f));
-    if (i % 3 == 0) scale.y = -scale.y;  // mirrored
-    scene.instances.push_back({trs(rng.inBox(glm::vec3(-10), glm::vec3(10)),
-                                   rng.uniform(0.0f, 6.28f), rng.direction(), scale),
-                               i % 2, i, /*fixed=*/i % 4 != 0});
-  }
+  Scene scene = instancedSoups();
+  for (uint32_t i = 0; i < scene.instances.size(); ++i) scene.instances[i].fixed = i % 4 != 0;
   SceneBvh bvh = buildScene(scene);
   EXPECT_EQ(bvh.merged().instances, 9u);
   EXPECT_EQ(bvh.merged().builds, 1u);

@@ -228,6 +228,22 @@ inline Scene twoRoomScene() {
   return s;
 }
 
+// Twelve rotated, non-uniformly scaled (some mirrored) instances of two random soups,
+// instance i of mesh i % 2.
+inline Scene instancedSoups() {
+  Scene scene;
+  scene.meshes = {randomSoup(1500, 3), randomSoup(800, 4, 4.0f, 0.01f, 0.5f)};
+  Random rng(5);
+  for (uint32_t i = 0; i < 12; ++i) {
+    glm::vec3 scale(rng.uniform(0.2f, 1.5f), rng.uniform(0.2f, 1.5f), rng.uniform(0.2f, 1.5f));
+    if (i % 3 == 0) scale.y = -scale.y;  // mirrored
+    scene.instances.push_back({trs(rng.inBox(glm::vec3(-10), glm::vec3(10)),
+                                   rng.uniform(0.0f, 6.28f), rng.direction(), scale),
+                               i % 2, i});
+  }
+  return scene;
+}
+
 inline std::vector<Ray> randomRays(uint32_t count, uint64_t seed, const glm::vec3& lo,
                                    const glm::vec3& hi) {
   Random rng(seed);
