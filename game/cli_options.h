@@ -5,15 +5,11 @@
 
 #include "engine/guiding/guiding_settings.h"
 #include "engine/render/render_settings.h"
+#include "game/common_options.h"
 #include "game/setting_words.h"
 #include "game/settings.h"
 
 namespace qlight::game {
-
-struct CommonOptions {
-  std::string device;  // --device: pick a Vulkan device by name
-  bool validation = false;
-};
 
 // Adds --width --height, the tracing options, --exposure --temporal-blend --tonemap.
 void addRenderOptions(CLI::App& app, render::RenderSettings& s);
@@ -23,10 +19,6 @@ void addTracingOptions(CLI::App& app, render::RenderSettings& s);
 // Adds --guiding --strata --alpha-min --alpha-max --points --light-learning
 // --select-probability --point-set --nee. `strata` and `nee` are applied by
 // finishGuidingOptions after parsing.
-struct GuidingCli {
-  std::string strata;
-  std::string nee;  // "", "on" or "off"
-};
 void addGuidingOptions(CLI::App& app, guiding::GuidingSettings& g, GuidingCli& cli);
 void finishGuidingOptions(const GuidingCli& cli, guiding::GuidingSettings& g,
                           render::RenderSettings& r);
@@ -51,8 +43,5 @@ void addSettingsOption(CLI::App& app, std::string& file);
 // options were not given on `cmd`'s command line, and prints its warnings. Throws
 // std::runtime_error (one line naming the file) when it cannot be read or parsed.
 void applySettingsFile(const CLI::App& cmd, const std::string& file, Settings& s);
-
-// Exit code when the validation layer reported something (tests treat it as failure).
-constexpr int kExitValidation = 3;
 
 }  // namespace qlight::game

@@ -5,7 +5,7 @@
 #include <memory>
 
 #include "engine/gpu/context.h"
-#include "game/cli_options.h"
+#include "game/common_options.h"
 
 namespace qlight::game {
 

@@ -14,6 +14,7 @@
 #include "engine/session/renderer.h"
 #include "engine/session/stats_json.h"
 #include "engine/ui/display_filter.h"
+#include "game/cli_options.h"
 #include "game/context_setup.h"
 #include "game/demo_timeline.h"
 #include "game/demo_window.h"

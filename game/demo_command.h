@@ -2,10 +2,9 @@
 // without one (or with --headless) it renders the same timeline to images and a
 // stats file.
 #pragma once
-#include <CLI/CLI.hpp>
 #include <functional>
 
-#include "game/cli_options.h"
+#include "game/common_options.h"
 
 namespace qlight::game {
 

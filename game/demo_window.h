@@ -6,7 +6,7 @@
 
 #include "engine/render/render_settings.h"
 #include "game/camera_path.h"
-#include "game/cli_options.h"
+#include "game/common_options.h"
 #include "game/settings.h"
 #include "game/window_script.h"
 

@@ -8,6 +8,7 @@
 #include "engine/gpu/context.h"
 #include "engine/session/offline_render.h"
 #include "engine/session/stats_json.h"
+#include "game/cli_options.h"
 #include "game/context_setup.h"
 #include "game/environment_choice.h"
 #include "game/progress_bar.h"

@@ -1,9 +1,8 @@
 // `qlight render`: one image of a scene at a given time, with a stats file.
 #pragma once
-#include <CLI/CLI.hpp>
 #include <functional>
 
-#include "game/cli_options.h"
+#include "game/common_options.h"
 
 namespace qlight::game {
 

@@ -12,6 +12,7 @@
 #include "engine/session/stats_json.h"
 #include "game/bench/bench_report.h"
 #include "game/bench/tracking_study.h"
+#include "game/cli_options.h"
 #include "game/context_setup.h"
 #include "game/demo_command.h"
 #include "game/shipped_scenes.h"

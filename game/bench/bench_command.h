@@ -2,10 +2,9 @@
 // equal samples, per scene, against a converged reference; writes bench.json,
 // the final images, plots and a markdown report.
 #pragma once
-#include <CLI/CLI.hpp>
 #include <functional>
 
-#include "game/cli_options.h"
+#include "game/common_options.h"
 
 namespace qlight::game {
 
