@@ -13,14 +13,25 @@ namespace qlight::gpu {
 
 ComputePipeline::ComputePipeline(const Context& ctx, const std::string& shaderName,
                                  std::vector<uint32_t> specialization)
-    : name_(shaderName) {
+    : objects_(ctx.pipelines().get(ctx, shaderName, specialization)) {}
+
+const PipelineObjects& ComputePipeline::objects() const {
+  static const PipelineObjects kNone;
+  return objects_ ? *objects_ : kNone;
+}
+
+std::shared_ptr<const PipelineObjects> buildComputePipeline(
+    const Context& ctx, const std::string& shaderName,
+    const std::vector<uint32_t>& specialization) {
   std::span<const uint32_t> spirv = shaders::findSpirv(shaderName);
   if (spirv.empty()) throw std::runtime_error("no embedded shader named " + shaderName);
-  reflection_ = reflectSpirv(spirv);
-  for (int i = 0; i < 3; ++i) localSize_[i] = reflection_.localSize[i];
+  auto out = std::make_shared<PipelineObjects>();
+  out->name = shaderName;
+  out->reflection = reflectSpirv(spirv);
+  for (int i = 0; i < 3; ++i) out->localSize[i] = out->reflection.localSize[i];
   // local_size_x_id = 0..2 convention: specialization constants 0..2 are the workgroup size.
   for (size_t i = 0; i < specialization.size() && i < 3; ++i)
-    if (specialization[i]) localSize_[i] = specialization[i];
+    if (specialization[i]) out->localSize[i] = specialization[i];
 
   VkDevice device = ctx.device();
   VkShaderModuleCreateInfo moduleInfo{VK_STRUCTURE_TYPE_SHADER_MODULE_CREATE_INFO};
@@ -28,11 +39,11 @@ ComputePipeline::ComputePipeline(const Context& ctx, const std::string& shaderNa
   moduleInfo.pCode = spirv.data();
   VkShaderModule module = VK_NULL_HANDLE;
   QL_VK(vkCreateShaderModule(device, &moduleInfo, nullptr, &module));
-  module_ = Unique<VkShaderModule>(
+  out->module = Unique<VkShaderModule>(
       module, [device](VkShaderModule m) { vkDestroyShaderModule(device, m, nullptr); });
 
   std::vector<VkDescriptorSetLayoutBinding> bindings;
-  for (const ReflectedBinding& b : reflection_.bindings) {
+  for (const ReflectedBinding& b : out->reflection.bindings) {
     if (b.set != 0)
       throw std::runtime_error("shader " + shaderName + ": binding " + b.name + " uses set " +
                                std::to_string(b.set) + "; qlight uses set 0 only");
@@ -44,7 +55,7 @@ ComputePipeline::ComputePipeline(const Context& ctx, const std::string& shaderNa
   setInfo.pBindings = bindings.data();
   VkDescriptorSetLayout setLayout = VK_NULL_HANDLE;
   QL_VK(vkCreateDescriptorSetLayout(device, &setInfo, nullptr, &setLayout));
-  setLayout_ = Unique<VkDescriptorSetLayout>(setLayout, [device](VkDescriptorSetLayout l) {
+  out->setLayout = Unique<VkDescriptorSetLayout>(setLayout, [device](VkDescriptorSetLayout l) {
     vkDestroyDescriptorSetLayout(device, l, nullptr);
   });
 
@@ -56,7 +67,7 @@ ComputePipeline::ComputePipeline(const Context& ctx, const std::string& shaderNa
   layoutInfo.pPushConstantRanges = &range;
   VkPipelineLayout layout = VK_NULL_HANDLE;
   QL_VK(vkCreatePipelineLayout(device, &layoutInfo, nullptr, &layout));
-  layout_ = Unique<VkPipelineLayout>(
+  out->layout = Unique<VkPipelineLayout>(
       layout, [device](VkPipelineLayout l) { vkDestroyPipelineLayout(device, l, nullptr); });
 
   std::vector<VkSpecializationMapEntry> entries;
@@ -74,9 +85,10 @@ ComputePipeline::ComputePipeline(const Context& ctx, const std::string& shaderNa
   info.layout = layout;
   VkPipeline pipeline = VK_NULL_HANDLE;
   QL_VK(vkCreateComputePipelines(device, VK_NULL_HANDLE, 1, &info, nullptr, &pipeline));
-  pipeline_ = Unique<VkPipeline>(pipeline,
-                                 [device](VkPipeline p) { vkDestroyPipeline(device, p, nullptr); });
+  out->pipeline = Unique<VkPipeline>(
+      pipeline, [device](VkPipeline p) { vkDestroyPipeline(device, p, nullptr); });
   ctx.setName(uint64_t(pipeline), VK_OBJECT_TYPE_PIPELINE, shaderName);
+  return out;
 }
 
 }  // namespace qlight::gpu

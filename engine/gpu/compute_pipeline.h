@@ -1,12 +1,15 @@
 // A compute pipeline built from one embedded shader (shaders/NAME.comp). Its
 // descriptor set 0 is a push-descriptor set whose layout is reflected from the
-// SPIR-V; push constants are up to kMaxPushConstantBytes.
+// SPIR-V; push constants are up to kMaxPushConstantBytes. The Vulkan objects come from the
+// Context's PipelineLibrary, so copies and later renderers share them.
 #pragma once
 #include <vulkan/vulkan.h>
 
+#include <memory>
 #include <string>
 
 #include "engine/gpu/context.h"
+#include "engine/gpu/pipeline_library.h"
 #include "engine/gpu/spirv_reflect.h"
 
 namespace qlight::gpu {
@@ -21,21 +24,20 @@ class ComputePipeline {
   ComputePipeline(const Context& ctx, const std::string& shaderName,
                   std::vector<uint32_t> specialization = {});
 
-  VkPipeline handle() const { return pipeline_; }
-  VkPipelineLayout layout() const { return layout_; }
-  const ReflectedShader& reflection() const { return reflection_; }
-  const std::string& name() const { return name_; }
+  VkPipeline handle() const { return objects_ ? objects_->pipeline.get() : VK_NULL_HANDLE; }
+  VkPipelineLayout layout() const { return objects_ ? objects_->layout.get() : VK_NULL_HANDLE; }
+  const ReflectedShader& reflection() const { return objects().reflection; }
+  const std::string& name() const { return objects().name; }
   // Workgroup size from the shader (after specialization when it uses local_size_x_id = 0..2).
-  uint32_t localSize(int axis) const { return localSize_[axis]; }
+  uint32_t localSize(int axis) const { return objects().localSize[axis]; }
 
  private:
-  std::string name_;
-  ReflectedShader reflection_;
-  uint32_t localSize_[3] = {1, 1, 1};
-  Unique<VkShaderModule> module_;
-  Unique<VkDescriptorSetLayout> setLayout_;
-  Unique<VkPipelineLayout> layout_;
-  Unique<VkPipeline> pipeline_;
+  const PipelineObjects& objects() const;
+  std::shared_ptr<const PipelineObjects> objects_;
 };
+
+// Builds the objects of one pipeline (PipelineLibrary calls it once per key).
+std::shared_ptr<const PipelineObjects> buildComputePipeline(
+    const Context& ctx, const std::string& shaderName, const std::vector<uint32_t>& specialization);
 
 }  // namespace qlight::gpu

@@ -9,6 +9,7 @@
 #include <filesystem>
 #include <stdexcept>
 
+#include "engine/gpu/pipeline_library.h"
 #include "engine/gpu/vk_check.h"
 
 namespace qlight::gpu {
@@ -88,6 +89,7 @@ Context::Context(ContextOptions options) {
   }
   pickPhysicalDevice(options);
   createDevice();
+  pipelines_ = std::make_unique<PipelineLibrary>();
   if (const char* n = std::getenv("QLIGHT_TEST_LOSE_DEVICE_AFTER"); n && *n)
     loseDeviceAfter_ = std::strtoull(n, nullptr, 10);
   // Tests of the limits on a device whose real ones no small scene reaches.

@@ -14,6 +14,8 @@
 
 namespace qlight::gpu {
 
+class PipelineLibrary;
+
 struct ContextOptions {
   // Khronos validation (with synchronization validation). Defaults to the
   // QLIGHT_VALIDATION environment variable (tests set it to 1).
@@ -81,6 +83,9 @@ class Context {
   // Names an object for debuggers and validation messages.
   void setName(uint64_t handle, VkObjectType type, const std::string& name) const;
 
+  // The compute pipelines built on this device so far, kept for every later user.
+  PipelineLibrary& pipelines() const { return *pipelines_; }
+
   PFN_vkCmdPushDescriptorSetKHR cmdPushDescriptorSet = nullptr;
 
  private:
@@ -109,6 +114,7 @@ class Context {
   Unique<VkDevice> device_;
   VkQueue queue_ = VK_NULL_HANDLE;
   Unique<VkCommandPool> oneShotPool_;
+  std::unique_ptr<PipelineLibrary> pipelines_;  // declared after device_: destroyed before it
   PFN_vkSetDebugUtilsObjectNameEXT setObjectName_ = nullptr;
 
   mutable std::mutex messagesMutex_;
