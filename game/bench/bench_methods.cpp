@@ -22,9 +22,9 @@ void measure(MethodState& m, const image::LinearImage& reference) {
       {m.result.spp, m.result.seconds, relativeMse(m.result.finalImage, reference)});
 }
 
-// lavapipe compiles a pipeline's shader code at its first dispatch, seconds for the deep Q
-// variants, and keeps it in Mesa's shader cache: one untimed frame of each method at a tiny
-// size, by renderers that are then dropped, keeps compilation out of the timed frames.
+// A pipeline is built at its first dispatch (seconds on lavapipe for the deep Q variants) and
+// kept in the Context's PipelineLibrary: one untimed frame of each method at a tiny size, by
+// renderers that are then dropped, keeps building out of the timed frames.
 void warmUpPipelines(const gpu::Context& ctx, const scene::SceneAsset& asset,
                      const std::vector<MethodSpec>& methods, const render::RenderSettings& render) {
   render::RenderSettings tiny = render;
