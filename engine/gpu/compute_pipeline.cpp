@@ -13,7 +13,7 @@ namespace qlight::gpu {
 
 ComputePipeline::ComputePipeline(const Context& ctx, const std::string& shaderName,
                                  std::vector<uint32_t> specialization)
-    : objects_(ctx.pipelines().get(ctx, shaderName, specialization)) {}
+    : objects_(ctx.pipelines().get(shaderName, specialization)) {}
 
 const PipelineObjects& ComputePipeline::objects() const {
   static const PipelineObjects kNone;

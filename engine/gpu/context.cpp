@@ -89,7 +89,7 @@ Context::Context(ContextOptions options) {
   }
   pickPhysicalDevice(options);
   createDevice();
-  pipelines_ = std::make_unique<PipelineLibrary>();
+  pipelines_ = std::make_unique<PipelineLibrary>(*this);
   if (const char* n = std::getenv("QLIGHT_TEST_LOSE_DEVICE_AFTER"); n && *n)
     loseDeviceAfter_ = std::strtoull(n, nullptr, 10);
   // Tests of the limits on a device whose real ones no small scene reaches.

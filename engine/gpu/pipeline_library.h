@@ -33,12 +33,15 @@ struct PipelineObjects {
 
 class PipelineLibrary {
  public:
+  explicit PipelineLibrary(const Context& ctx) : ctx_(ctx) {}
+
   // The pipeline of shaders/`shaderName`.comp with `specialization`, built on first use.
-  std::shared_ptr<const PipelineObjects> get(const Context& ctx, const std::string& shaderName,
+  std::shared_ptr<const PipelineObjects> get(const std::string& shaderName,
                                              const std::vector<uint32_t>& specialization);
   size_t size() const;
 
  private:
+  const Context& ctx_;
   mutable std::mutex mutex_;
   std::map<std::pair<std::string, std::vector<uint32_t>>, std::shared_ptr<const PipelineObjects>>
       built_;
