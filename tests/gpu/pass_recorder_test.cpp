@@ -137,9 +137,10 @@ TEST_F(PassRecorderTest, ReflectionReadsBindingsFromSpirv) {
 // A queue without timestamps (timestampPeriod 0) leaves timing off, a documented fallback:
 // the timer tests skip there. lavapipe, the device CI runs on, has them, so there they must run.
 bool timingAvailable(const gpu::Context& ctx, const gpu::GpuTimer& timer) {
-  if (!timer.enabled())
+  if (!timer.enabled()) {
     EXPECT_EQ(ctx.deviceName().find("llvmpipe"), std::string::npos)
         << "lavapipe's queue has timestamps: the timer must be on";
+  }
   return timer.enabled();
 }
 

@@ -227,8 +227,9 @@ TEST_F(DqnNetwork, BackwardPassMatchesFiniteDifferences) {
   }
   EXPECT_EQ(checked, 36);
   // Padding parameters have no gradient.
-  if (shared::dqnRowStride(s, 0) > shared::dqnLayerInputs(s, 0))
+  if (shared::dqnRowStride(s, 0) > shared::dqnLayerInputs(s, 0)) {
     EXPECT_EQ(gpu[shared::dqnLayerInputs(s, 0)], 0.0f);
+  }
 }
 
 // A synthetic incident radiance: the light is seen through one stratum, which one depends on
