@@ -113,6 +113,9 @@ void addGuidingOptions(CLI::App& app, guiding::GuidingSettings& g, GuidingCli& c
                  "learned NEE: where a point's shadow rays are blocked, sample a light with this "
                  "probability only, 0.01..1 (default 0.1; 1: NEE at every vertex)")
       ->check(finiteRange(ranges::kNeeMinProbability));
+  app.add_option("--guided-roulette", g.guidedRoulette,
+                 "Russian roulette by the contribution Q expects (on) or by throughput: on|off")
+      ->transform(CLI::CheckedTransformer(onOffWords(), CLI::ignore_case));
   app.add_option("--nee", cli.nee, "next event estimation: on (MIS with scattering) or off")
       ->check(CLI::IsMember({"on", "off"}, CLI::ignore_case));
 }

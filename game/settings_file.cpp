@@ -248,6 +248,7 @@ const std::vector<Field>& fields() {
       number(kGuiding, "light_mix", "", &G::lightMix, kAnyReal),
       number(kGuiding, "nee_min_probability", "--nee-min-probability", &G::neeMinProbability,
              kNeeMinProbability),
+      boolean(kGuiding, "guided_roulette", "--guided-roulette", &G::guidedRoulette),
       boolean(kGuiding, "learn", "", &G::learn),
       number(kWindow, "render_scale", "--render-scale", &W::renderScale, kRenderScale),
       number(kWindow, "target_frame_ms", "--target-frame-ms", &W::targetFrameMs, kTargetFrameMs),

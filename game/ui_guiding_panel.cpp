@@ -83,6 +83,7 @@ GuidingPanelResult drawGuidingSection(guiding::GuidingSettings& s,
   ImGui::SliderFloat("light mix", &s.lightMix, 0.0f, 0.95f, "%.2f", kClamp);
   ImGui::SliderFloat("NEE where blocked", &s.neeMinProbability, 0.01f, 1.0f,
                      s.neeMinProbability < 1 ? "%.2f" : "always", kLogClamp);
+  ImGui::Checkbox("roulette by expected light", &s.guidedRoulette);  // else by throughput
   if (s.method == guiding::GuideMethod::Dqn) drawNetworkSettings(s);
   r.changed = s.enabled != before.enabled || s.method != before.method ||
               networkChanged(s, before) || s.learn != before.learn || s.target != before.target ||
@@ -91,7 +92,8 @@ GuidingPanelResult drawGuidingSection(guiding::GuidingSettings& s,
               s.forgetOnLightMove != before.forgetOnLightMove ||
               s.selectProbability != before.selectProbability ||
               s.lightLearning != before.lightLearning || s.lightMix != before.lightMix ||
-              s.neeMinProbability != before.neeMinProbability;
+              s.neeMinProbability != before.neeMinProbability ||
+              s.guidedRoulette != before.guidedRoulette;
   r.regenerate = ImGui::Button("regenerate points");
   ImGui::Text("%u cache points (%u from camera paths)", st.points, st.spawnedPoints);
   ImGui::Text("%u strata, %u lights learned", st.strata, st.lightsLearned);

@@ -24,6 +24,7 @@ struct Switches {
   bool learnTd;      // ... else from D&K's one-step TD target
   bool guide;        // sample from the learned distributions
   bool usePoints;    // look up the vertex's cache point (for any of the above, or to spawn one)
+  bool roulette;     // Russian roulette by the expected contribution Q predicts
 };
 
 Switches frameSwitches() {
@@ -37,6 +38,8 @@ Switches frameSwitches() {
   sw.guide = (guiding.flags & kGuideSample) != 0u;
   sw.usePoints = kUseGuiding &&
                  (sw.learn || sw.guide || (guiding.flags & (kGuideLightLearn | kGuideSpawn)) != 0u);
+  sw.roulette = kUseGuiding && sw.guide && (guiding.flags & kGuideRoulette) != 0u &&
+                (frame.flags & kFlagRussianRoulette) != 0u;
   return sw;
 }
 
@@ -55,6 +58,7 @@ struct ScatterMix {
   uint point;     // kNoCachePoint: BSDF only
   GuidedRow row;  // the point's frame (its strata) and CDF row
   float guideShare;
+  float confidence;  // the point's (0: none)
 };
 
 // Light selection: by power, mixed with the learned V(point, light) when on; times p, the
@@ -186,9 +190,10 @@ ScatterMix scatterMix(uint point, Vertex v, Switches sw) {
     m.row.base = 0u;
     m.row.total = 1.0;
   }
-  m.guideShare = kUseGuiding && sw.guide && point != kNoCachePoint
+  m.confidence = kUseGuiding && point != kNoCachePoint ? pointConfidence(point) : 0.0;
+  m.guideShare = kUseGuiding && sw.guide
                      ? guiding.selectProbability * bsdfDiffuseProbability(v.bsdf, v.wo) *
-                           pointConfidence(point)
+                           m.confidence
                      : 0.0;
   return m;
 }
@@ -279,8 +284,9 @@ const float kDiffuseConeSpread = 0.25;
 
 // The next direction from the mixture, and the path moved onto it. Returns
 // false when no usable direction came out (the path ends).
+// expectedLi: Q in the direction taken (< 0: unknown).
 bool sampleScatter(inout PathState st, inout Rng rng, Vertex v, ScatterMix m, RayOrigins o,
-                   bool learn) {
+                   bool learn, bool roulette, out float expectedLi) {
   vec3 wiWorld = vec3(0.0);
   vec3 pointLocal = vec3(0.0);  // wi in the point's frame
   GuidedLookup g;               // and its entry and guided pdf: found once, for the pdf and learning
@@ -298,8 +304,9 @@ bool sampleScatter(inout PathState st, inout Rng rng, Vertex v, ScatterMix m, Ra
     wiWorld = worldFromLocal(v.tf, local);
     pointLocal = localFromWorld(m.row.frame, wiWorld);
   }
-  if (m.point != kNoCachePoint && (m.guideShare > 0.0 || learn))
+  if (m.point != kNoCachePoint && (m.guideShare > 0.0 || learn || roulette))
     g = guidedLookupAt(m.row, pointLocal, g);
+  expectedLi = m.point != kNoCachePoint ? lookedUpQ(m.row, g, pointLocal.z) : -1.0;
   if (guided) sampled = pointLocal.z > 0.0 && g.pdf > 0.0;
   vec3 wiLocal = localFromWorld(v.tf, wiWorld);
   float pdf = 0.0;
@@ -325,16 +332,27 @@ bool sampleScatter(inout PathState st, inout Rng rng, Vertex v, ScatterMix m, Ra
   return moved;
 }
 
-// From depth 2 on, a path survives with probability ~ its throughput;
-// survivors are reweighted, so the estimate stays unbiased.
-bool survivesRoulette(inout PathState st, inout Rng rng) {
-  bool survives = true;
-  if ((frame.flags & kFlagRussianRoulette) != 0u && pc.bounce >= 2u) {
-    float survive = min(max(st.throughput.r, max(st.throughput.g, st.throughput.b)), 0.95);
-    if (rngNextFloat(rng) >= survive) survives = false;
-    else st.throughput /= survive;
+// From depth 2 on, a path survives with probability ~ its throughput, or
+// guided, ~ its expected contribution (guidedSurvivalProbability); survivors
+// are reweighted, so the estimate stays unbiased.
+float expectedRadianceAtFirstVertex(uint path) {
+  return pathTexel(path, kPathTexelRouletteScale).x;
+}
+
+bool survivesRoulette(inout PathState st, inout Rng rng, uint path, Switches sw, ScatterMix m,
+                      float expectedLi) {
+  if ((frame.flags & kFlagRussianRoulette) == 0u || pc.bounce < 2u) return true;
+  float survive = min(max(st.throughput.r, max(st.throughput.g, st.throughput.b)),
+                      kRouletteMaxSurvival);
+  if (sw.roulette && expectedLi >= 0.0) {
+    float firstVertex = expectedRadianceAtFirstVertex(path);
+    if (firstVertex > 0.0)
+      survive = guidedSurvivalProbability(survive, luminance(st.throughput) * expectedLi,
+                                          firstVertex, m.confidence);
   }
-  return survives;
+  if (rngNextFloat(rng) >= survive) return false;
+  st.throughput /= survive;
+  return true;
 }
 
 // Survivors go to the next trace.
@@ -355,9 +373,16 @@ bool scatterAt(inout PathState st, inout Rng rng, uint path, Surface s, vec3 le,
   RayOrigins o;
   o.above = offsetRayOriginFrom(s.position, s.geometricNormal, s.extent);
   o.below = offsetRayOriginFrom(s.position, -s.geometricNormal, s.extent);
+  if (sw.roulette && pc.bounce == 0u) {
+    float scale = m.point != kNoCachePoint && m.confidence > 0.0
+                      ? rowScatteredEstimate(m.row, v.bsdf, v.wo, -st.dir, v.ns)
+                      : 0.0;
+    setPathTexel(path, kPathTexelRouletteScale, vec4(scale, 0.0, 0.0, 0.0));
+  }
   if (sw.nee) sampleDirectLight(st, rng, path, v, m, o, sw.mis);
-  bool alive = sampleScatter(st, rng, v, m, o, sw.learn);
-  if (alive) alive = survivesRoulette(st, rng);
+  float expectedLi;
+  bool alive = sampleScatter(st, rng, v, m, o, sw.learn, sw.roulette, expectedLi);
+  if (alive) alive = survivesRoulette(st, rng, path, sw, m, expectedLi);
   if (alive) st.rays++;  // the next trace pass traces its ray
   return alive;
 }

@@ -151,6 +151,7 @@ void DqnGuide::upload() {
   g.hashSize = 1;
   g.flags = shared::kGuideSample | shared::kGuideDqn | shared::kGuideLearnReturns;
   if (settings_.learn) g.flags |= shared::kGuideLearn;
+  if (settings_.guidedRoulette) g.flags |= shared::kGuideRoulette;
   g.selectProbability = settings_.selectProbability;
   g.qFloor = settings_.qFloor;
   g.alphaMin = settings_.alphaMin;

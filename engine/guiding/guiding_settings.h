@@ -103,6 +103,11 @@ struct GuidingSettings {
   // Learned NEE: a point whose shadow rays are (nearly) all blocked samples a light with this
   // probability only, and its NEE counts 1 / p (shared::neeProbabilityOf). 1 turns it off.
   float neeMinProbability = 0.1f;
+  // Russian roulette by the path's expected contribution (throughput x Q in the direction
+  // taken, over what its first vertex expected) instead of its throughput alone. A throughput
+  // roulette ends the paths guiding sent toward the light, whose pdf is large: on the door
+  // scene it cut guiding's equal-spp gain from 0.27 (roulette off) to 0.82.
+  bool guidedRoulette = true;
   uint32_t seed = 1;
 
   uint32_t strata() const { return rows * cols; }

@@ -107,6 +107,7 @@ void QGuide::writeUniforms() {
   u.treeNodes = settings_.treeNodes;
   if (on && tables_.lights() > 0) u.flags |= shared::kGuideLightLearn;
   if (on && settings_.learnsNee()) u.flags |= shared::kGuideNeeLearn;
+  if (on && settings_.guidedRoulette) u.flags |= shared::kGuideRoulette;
   u.neeMinProbability = settings_.neeMinProbability;
   if (settings_.enabled && settings_.spawnFromCamera && count < settings_.pointBudget &&
       generator_.spawning())

@@ -216,6 +216,7 @@ int runBench(BenchArgs a, const CommonOptions& common) {
         {"select_probability", a.guiding.selectProbability},
         {"confidence_updates", a.guiding.confidenceUpdates},
         {"nee_min_probability", a.guiding.neeMinProbability},
+        {"guided_roulette", a.guiding.guidedRoulette},
         {"learning_target",
          a.guiding.target == guiding::LearningTarget::Returns ? "returns" : "td"},
         {"alpha_min", a.guiding.alphaMin},

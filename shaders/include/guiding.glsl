@@ -219,8 +219,8 @@ float guidedIrradiance(GuidedRow r) { return treeDirections() ? kPi * r.total : 
 // Radiance the vertex scatters toward wo, estimated from Q at its point: the
 // diffuse lobe integrates Q against albedo/pi exactly (per stratum or leaf); the
 // specular lobe takes Q from the mirror direction.
-float scatteredEstimate(uint point, BsdfParams bsdf, vec3 woLocal, vec3 woWorld, vec3 shadingNormal) {
-  GuidedRow r = guidedRow(point);
+float rowScatteredEstimate(GuidedRow r, BsdfParams bsdf, vec3 woLocal, vec3 woWorld,
+                           vec3 shadingNormal) {
   float estimate = luminance(bsdfDiffuseAlbedo(bsdf, woLocal.z)) * kInvPi * guidedIrradiance(r);
   vec3 fresnel = specularFresnel(bsdf, woLocal.z);
   if (fresnel != vec3(0.0)) {
@@ -229,6 +229,16 @@ float scatteredEstimate(uint point, BsdfParams bsdf, vec3 woLocal, vec3 woWorld,
     if (local.z > 0.0) estimate += luminance(fresnel) * storedQ(r, local);
   }
   return estimate;
+}
+
+float scatteredEstimate(uint point, BsdfParams bsdf, vec3 woLocal, vec3 woWorld, vec3 shadingNormal) {
+  return rowScatteredEstimate(guidedRow(point), bsdf, woLocal, woWorld, shadingNormal);
+}
+
+// Q in the direction of a lookup at the point (local.z: its cosine there): both the strata's
+// and the tree's densities are Q cos(theta) / irradiance.
+float lookedUpQ(GuidedRow r, GuidedLookup g, float cosTheta) {
+  return cosTheta > 0.0 && g.pdf > 0.0 ? g.pdf * guidedIrradiance(r) / cosTheta : -1.0;
 }
 
 // Adds a non-negative target to a (lo, hi) fixed-point sum; the carry out of

@@ -34,6 +34,8 @@ QL_CONST uint kGuideTree = 32u;
 QL_CONST uint kGuideDqn = 64u;
 // NEE at a point with the probability its shadow rays have shown they pay (neeProbabilityOf).
 QL_CONST uint kGuideNeeLearn = 128u;
+// Russian roulette by the path's expected contribution from Q (pt_shade.comp), not its throughput.
+QL_CONST uint kGuideRoulette = 256u;
 
 struct GuidingUniforms {
   uint rows;  // strata rows (equal-height zones in cos theta)
@@ -236,6 +238,28 @@ QL_CONST uint kNeeWordsPerPoint = 4u;
 QL_FN float neeProbabilityOf(float rays, float unoccluded, float minProbability) {
   if (minProbability >= 1.0f) return 1.0f;
   return clamp(kNeeBoost * (unoccluded + 1.0f) / (rays + 1.0f), minProbability, 1.0f);
+}
+
+// Guided Russian roulette (kGuideRoulette, pt_shade.comp): a path survives with a
+// probability that follows its expected contribution from here on, its throughput's luminance
+// times Q in the direction it took, over what its first vertex expected, as in Vorba and
+// Krivanek's adjoint-driven roulette (without its splitting). A guided direction toward the
+// light has a small throughput because its pdf is large: a throughput roulette ends exactly
+// the paths guiding found. Paths expected to bring at least 1/kRouletteWindow of the first
+// vertex's estimate are kept (ADRRS's lower weight-window bound with s = 5; on the door scene
+// 2 and 4 did as well); the floor bounds a survivor's weight where Q underestimates; the
+// point's confidence mixes in the throughput's probability.
+QL_CONST float kRouletteWindow = 3.0f;
+QL_CONST float kRouletteMinSurvival = 0.05f;
+QL_CONST float kRouletteMaxSurvival = 0.95f;  // every path ends (the throughput roulette's cap)
+
+// throughputSurvival: the throughput roulette's (its largest channel); expected: luminance of
+// the throughput x Q in the direction taken; firstVertex (> 0): the first vertex's estimate.
+QL_FN float guidedSurvivalProbability(float throughputSurvival, float expected,
+                                      float firstVertex, float confidence) {
+  float guided = kRouletteWindow * expected / firstVertex;
+  return min(max(mix(throughputSurvival, guided, confidence), kRouletteMinSurvival),
+             kRouletteMaxSurvival);
 }
 
 // Bindings and push constants of nee_update.comp: one thread per point folds the frame's

@@ -226,7 +226,10 @@ QL_CONST uint kPathTexelCounters = 6u;       // vertices | covered << 16, half2(
 // Learning from returns (shaders/include/learning_returns.glsl): the last
 // kReturnRecords vertices' Q entry, radiance so far and throughput, a ring.
 QL_CONST uint kReturnRecords = 4u;
-QL_CONST uint kPathTexelReturnRecords = 7u;  // entry, luminance(radiance), luminance(throughput), 0
+// Guided Russian roulette (pt_shade.comp): the path's expected radiance at its
+// first vertex, written there, read at each later roulette.
+QL_CONST uint kPathTexelRouletteScale = 7u;  // expected radiance, 0, 0, 0
+QL_CONST uint kPathTexelReturnRecords = 8u;  // entry, luminance(radiance), luminance(throughput), 0
 QL_CONST uint kPathStateTexels = kPathTexelReturnRecords + kReturnRecords;
 
 // Per queue (two: the current and the next): its count and the indirect
