@@ -255,8 +255,8 @@ QL_CONST float kRouletteMaxSurvival = 0.95f;  // every path ends (the throughput
 
 // throughputSurvival: the throughput roulette's (its largest channel); expected: luminance of
 // the throughput x Q in the direction taken; firstVertex (> 0): the first vertex's estimate.
-QL_FN float guidedSurvivalProbability(float throughputSurvival, float expected,
-                                      float firstVertex, float confidence) {
+QL_FN float guidedSurvivalProbability(float throughputSurvival, float expected, float firstVertex,
+                                      float confidence) {
   float guided = kRouletteWindow * expected / firstVertex;
   return min(max(mix(throughputSurvival, guided, confidence), kRouletteMinSurvival),
              kRouletteMaxSurvival);
