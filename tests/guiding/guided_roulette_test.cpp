@@ -25,9 +25,8 @@ TEST(GuidedRoulette, KeepsPathsExpectedToBringLight) {
   EXPECT_FLOAT_EQ(guidedSurvivalProbability(0.02f, 0.02f * 5.0f, firstVertex, 1.0f),
                   kRouletteMaxSurvival);
   // At exactly 1/kRouletteWindow of the estimate it is still kept (up to the cap).
-  EXPECT_FLOAT_EQ(
-      guidedSurvivalProbability(0.5f, firstVertex / kRouletteWindow, firstVertex, 1.0f),
-      kRouletteMaxSurvival);
+  EXPECT_FLOAT_EQ(guidedSurvivalProbability(0.5f, firstVertex / kRouletteWindow, firstVertex, 1.0f),
+                  kRouletteMaxSurvival);
 }
 
 TEST(GuidedRoulette, SurvivalIsProportionalToExpectedContributionBelowTheWindow) {
