@@ -106,7 +106,7 @@ struct GuidingSettings {
   // Russian roulette by the path's expected contribution (throughput x Q in the direction
   // taken, over what its first vertex expected) instead of its throughput alone. A throughput
   // roulette ends the paths guiding sent toward the light, whose pdf is large: on the door
-  // scene it cut guiding's equal-spp gain from 0.27 (roulette off) to 0.82.
+  // scene it raised guided's equal-spp relMSE ratio from 0.27 (roulette off) to 0.82.
   bool guidedRoulette = true;
   uint32_t seed = 1;
 
