@@ -4,7 +4,9 @@
 # its own long reference (reference noise subtracted), and the time each needs to reach the
 # error Cycles has after 256 samples. Needs Debian's blender package (apt-get install blender).
 # usage: tools/race_cycles.sh [SCENE (default assets/door_ajar.gltf)] [OUTDIR (default out/race)]
-# Environment: REF_SPP (default 4096, per half of each reference), THREADS (default: cores).
+# Environment: REF_SPP (default 4096, per half of each reference), SEEDS (default "1 2"),
+# CYCLES_SPP (default "32 64 128 256 512"), QLIGHT_SPP (default "64 128 256 512 1024"),
+# THREADS (default: cores).
 set -euo pipefail
 cd "$(dirname "$0")/.."
 scene=$(realpath "${1:-assets/door_ajar.gltf}")
@@ -47,9 +49,10 @@ cycles 102 "$ref_spp"
 qlight off 101 "$ref_spp"
 qlight off 102 "$ref_spp"
 echo "race_cycles: test renders"
-for seed in 1 2; do
-  cycles "$seed" 32 64 128 256 512
-  for spp in 64 128 256 512 1024; do
+for seed in ${SEEDS:-1 2}; do
+  # shellcheck disable=SC2086
+  cycles "$seed" ${CYCLES_SPP:-32 64 128 256 512}
+  for spp in ${QLIGHT_SPP:-64 128 256 512 1024}; do
     qlight q "$seed" "$spp"
     qlight off "$seed" "$spp"
   done

@@ -2,8 +2,10 @@
 # The race's report (tools/race_cycles.sh): each renderer's error against its own reference
 # (the mean of two independent halves, seeds >= 100; their noise, a quarter of the halves'
 # difference, subtracted), mean seconds and error per sample count over the seeds, and the
-# time each qlight method needs to reach the error Cycles has after 256 samples (log-log
-# interpolation between the measured counts; beyond them, error ~ 1 / time).
+# time each renderer needs to reach the error Cycles has after 256 samples (log-log
+# interpolation between the measured counts; beyond them, error ~ 1 / time). One Cycles count
+# can be off by 2x from a firefly, so the target is Cycles' fitted error at its 256-sample time:
+# Cycles learns nothing, so its error * seconds is one constant, fitted as the geometric mean.
 # usage: race_report.py RESULTS.jsonl
 import array
 import json
@@ -44,6 +46,15 @@ def time_to_error(curve, target):
             return math.exp(math.log(t0) + f * (math.log(t1) - math.log(t0))), False
     t, e = curve[-1] if target < curve[-1][1] else curve[0]
     return t * e / target, True  # extrapolated
+
+
+def error_at_time(curve, seconds):
+    # log-log interpolation of the error at a time inside the measured range, else None.
+    for (t0, e0), (t1, e1) in zip(curve, curve[1:]):
+        if t0 <= seconds <= t1 and e0 > 0 and e1 > 0:
+            f = (math.log(seconds) - math.log(t0)) / (math.log(t1) - math.log(t0))
+            return math.exp(math.log(e0) + f * (math.log(e1) - math.log(e0)))
+    return None
 
 
 def main():
@@ -90,17 +101,41 @@ def main():
         curves[name] = (curve, dict((spp, c) for spp, c in zip(sorted(by_spp), curve)))
     out.append("")
 
-    cycles_256 = curves["cycles"][1].get(256)
+    cycles_curve, cycles_by_spp = curves["cycles"]
+    cycles_256 = cycles_by_spp.get(256)
     if cycles_256:
-        t_c, e_c = cycles_256
-        out.append(f"Cycles after 256 samples: relMSE {e_c:.4f} in {t_c:.2f} s.")
+        t_c, e_measured = cycles_256
+        inefficiency = math.exp(sum(math.log(t * e) for t, e in cycles_curve) / len(cycles_curve))
+        e_c = inefficiency / t_c
+        out.append(f"Cycles after 256 samples: {t_c:.2f} s, relMSE {e_measured:.4f} measured, "
+                   f"{e_c:.4f} fitted (error * seconds = {inefficiency:.3f} over all its counts).")
         out.append("")
-        out.append("| renderer | seconds to Cycles' 256-sample error | vs Cycles |")
+        out.append("| renderer | seconds to Cycles' fitted 256-sample error | vs Cycles |")
         out.append("| --- | ---: | ---: |")
         for name, (curve, _) in sorted(curves.items()):
+            if name == "cycles":
+                continue
             t, extrapolated = time_to_error(curve, e_c)
             note = " (extrapolated)" if extrapolated else ""
             out.append(f"| {name} | {t:.2f}{note} | {t / t_c:.2f}x |")
+        out.append("")
+        # Beyond Cycles' longest render its fit (error * seconds constant) stands in, marked *.
+        longest = max(c[0][-1][0] for c in curves.values())
+        times = [t for t, _ in cycles_curve] + [t for t in (60.0, 120.0) if t <= longest]
+        out.append("Error at equal time, as a fraction of Cycles' fitted error at that time "
+                   "(* beyond Cycles' longest render):")
+        out.append("")
+        out.append("| renderer | " + " | ".join(
+            f"{t:.1f} s" + ("*" if t > cycles_curve[-1][0] else "") for t in times) + " |")
+        out.append("| --- |" + " ---: |" * len(times))
+        for name, (curve, _) in sorted(curves.items()):
+            if name == "cycles":
+                continue
+            cells = []
+            for t in times:
+                e = error_at_time(curve, t)
+                cells.append("-" if e is None else f"{e * t / inefficiency:.2f}")
+            out.append(f"| {name} | " + " | ".join(cells) + " |")
     print("\n".join(out))
 
 
