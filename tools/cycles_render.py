@@ -1,9 +1,9 @@
 # Renders a glTF scene with Blender's Cycles on the CPU as qlight renders it, for the race in
 # tools/race_cycles.sh (issue 10): Lambertian materials (each material's base colour as a
-# Diffuse BSDF, its emission as an Emission shader of the same radiance), no world light, a box
-# pixel filter of one pixel, no denoising, no adaptive sampling, no clamping, the same bounce
-# limit. Writes one PFM (linear radiance) per sample count and a JSON line per render with its
-# seconds (bpy.ops.render.render, the scene already loaded).
+# Diffuse BSDF, its emission as an Emission shader of the same radiance from front faces only),
+# no world light, a box pixel filter of one pixel, no denoising, no adaptive sampling, no
+# clamping, the same bounce limit. Writes one PFM (linear radiance) per sample count and a JSON
+# line per render with its seconds (bpy.ops.render.render, the scene already loaded).
 #
 #   blender -b -noaudio --python tools/cycles_render.py -- SCENE.gltf OUT_PREFIX WIDTH HEIGHT \
 #       MAX_DEPTH THREADS SEED SPP [SPP ...]
@@ -41,9 +41,20 @@ def lambertian_materials():
         diffuse.inputs["Color"].default_value = base
         diffuse.inputs["Roughness"].default_value = 0.0  # Lambert, not Oren-Nayar
         if strength > 0.0 and max(emission[:3]) > 0.0:
+            # Cycles' mesh emission is two-sided; glTF's (and qlight's) emits from the front
+            # face only: the strength is multiplied by 1 - backfacing.
             emit = nodes.new("ShaderNodeEmission")
             emit.inputs["Color"].default_value = emission
-            emit.inputs["Strength"].default_value = strength
+            geometry = nodes.new("ShaderNodeNewGeometry")
+            front = nodes.new("ShaderNodeMath")
+            front.operation = "SUBTRACT"
+            front.inputs[0].default_value = 1.0
+            links.new(geometry.outputs["Backfacing"], front.inputs[1])
+            front_strength = nodes.new("ShaderNodeMath")
+            front_strength.operation = "MULTIPLY"
+            front_strength.inputs[1].default_value = strength
+            links.new(front.outputs[0], front_strength.inputs[0])
+            links.new(front_strength.outputs[0], emit.inputs["Strength"])
             add = nodes.new("ShaderNodeAddShader")
             links.new(diffuse.outputs[0], add.inputs[0])
             links.new(emit.outputs[0], add.inputs[1])
