@@ -7,7 +7,9 @@
 //
 // On lavapipe both sides of every branch execute, so the kUse* guards
 // (specialization constants, include/features.glsl) must stay where they are:
-// they remove the code of the features a frame does not use.
+// they remove the code of the features a frame does not use. The same holds
+// for the bounce: each phase (camera hits, bounce 1, later) has a pipeline of
+// its own, and the steps of the others (atCameraHit, atRouletteBounce) are not in it.
 #extension GL_GOOGLE_include_directive : require
 #include "include/path_common.glsl"
 #include "include/path_queue.glsl"
@@ -32,7 +34,7 @@ Switches frameSwitches() {
   sw.nee = (frame.flags & kFlagNee) != 0u && frame.lightCount > 0u;
   sw.emitterHits = (frame.flags & kFlagEmitterHits) != 0u;
   sw.mis = (frame.flags & kFlagMis) != 0u && sw.nee && sw.emitterHits;
-  sw.learn = (guiding.flags & kGuideLearn) != 0u;
+  sw.learn = kLearning && (guiding.flags & kGuideLearn) != 0u;
   sw.returns = learningFromReturns();
   sw.learnTd = kUseTdTarget && sw.learn && !sw.returns;
   sw.guide = (guiding.flags & kGuideSample) != 0u;
@@ -99,7 +101,7 @@ void shadeEscaped(inout PathState st, Switches sw) {
   if (kUseNonTriangleLights && frame.lightCount > 0u && lights[last].type == kLightSky) {
     SkySeen sky = skySeenFrom(last, st.dir);
     float w = 1.0;
-    if (pc.bounce > 0u) {  // camera rays see the sky unweighted
+    if (!atCameraHit()) {  // camera rays see the sky unweighted
       if (!sw.emitterHits) w = 0.0;
       else if (sw.mis) {
         float lightPdf = lightSelectionPdf(st.prevPoint, sky.light) * sky.pdf;
@@ -130,7 +132,7 @@ vec3 addEmission(inout PathState st, Surface s, Switches sw) {
   vec3 le = surfaceEmission(s);
   if (le != vec3(0.0)) {
     float w = 1.0;
-    if (pc.bounce > 0u) {
+    if (!atCameraHit()) {
       uint li = triangleAt(s.triangle).light;
       // Emitters outside the light list (unlit surfaces) are found by scattered rays only.
       if (li == kNoLight) w = 1.0;
@@ -169,7 +171,7 @@ uint lookupCachePoint(inout PathState st, uint path, Vertex v, vec3 le, Switches
     if (sw.learnTd && st.prevEntry != kNoCachePoint)
       recordQTarget(st.prevEntry,
                     luminance(le) + scatteredEstimate(point, v.bsdf, v.wo, -st.dir, v.ns));
-  } else if (sw.usePoints && pc.bounce == 0u && (guiding.flags & kGuideSpawn) != 0u) {
+  } else if (sw.usePoints && atCameraHit() && (guiding.flags & kGuideSpawn) != 0u) {
     reportUncovered(path, pc.pathCount, frame.frameIndex + pc.sampleIndex, v.s.position,
                     v.s.geometricNormal);
   }
@@ -276,7 +278,7 @@ void sampleDirectLight(inout PathState st, inout Rng rng, uint path, Vertex v, S
     if (unoccluded) st.radiance += contribution;
     recordShadowRay(m.point, unoccluded);
   }
-  if (lightLearningOn(m.point)) recordVTarget(m.point, li, unoccluded ? target : 0.0);
+  if (kLearning && lightLearningOn(m.point)) recordVTarget(m.point, li, unoccluded ? target : 0.0);
 }
 
 // Radians a diffuse bounce adds to a ray cone's spread (a wide lobe: coarse texture levels).
@@ -341,7 +343,7 @@ float expectedRadianceAtFirstVertex(uint path) {
 
 bool survivesRoulette(inout PathState st, inout Rng rng, uint path, Switches sw, ScatterMix m,
                       float expectedLi) {
-  if ((frame.flags & kFlagRussianRoulette) == 0u || pc.bounce < 2u) return true;
+  if ((frame.flags & kFlagRussianRoulette) == 0u || !atRouletteBounce()) return true;
   float survive = min(max(st.throughput.r, max(st.throughput.g, st.throughput.b)),
                       kRouletteMaxSurvival);
   if (sw.roulette && expectedLi >= 0.0) {
@@ -373,7 +375,7 @@ bool scatterAt(inout PathState st, inout Rng rng, uint path, Surface s, vec3 le,
   RayOrigins o;
   o.above = offsetRayOriginFrom(s.position, s.geometricNormal, s.extent);
   o.below = offsetRayOriginFrom(s.position, -s.geometricNormal, s.extent);
-  if (sw.roulette && pc.bounce == 0u) {
+  if (sw.roulette && atCameraHit()) {
     float scale = m.point != kNoCachePoint && m.confidence > 0.0
                       ? rowScatteredEstimate(m.row, v.bsdf, v.wo, -st.dir, v.ns)
                       : 0.0;
@@ -394,7 +396,7 @@ void main() {
   Rng rng;
   rng.state = st.rng;
   Switches sw = frameSwitches();
-  if (sw.returns && pc.bounce > 0u) openReturnRecord(st, path, pc.bounce);
+  if (sw.returns && !atCameraHit()) openReturnRecord(st, path, pc.bounce);
   bool alive = false;
   if (st.hitT < 0.0) {
     shadeEscaped(st, sw);

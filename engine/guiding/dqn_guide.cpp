@@ -140,6 +140,7 @@ render::GuideFeatures DqnGuide::features() const {
   f.dqnHidden = shape_.hidden;
   f.dqnOutputs = shape_.outputs;
   f.dqnGrid = settings_.dqnGrid;
+  f.learns = settings_.learn;
   return f;
 }
 

@@ -152,6 +152,7 @@ render::GuideFeatures QGuide::features() const {
   f.lightLearning = settings_.enabled && points_->count() > 0 && tables_.lights() > 0;
   f.directionTrees = settings_.directions == DirectionModel::Tree;
   f.tdTarget = settings_.learn && settings_.target == LearningTarget::TdStep;
+  f.learns = settings_.learn;
   return f;
 }
 

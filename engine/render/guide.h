@@ -14,6 +14,8 @@ struct GuideFeatures {
   bool dqn = false;             // the deep Q network guides instead of the points' tables
   bool directionTrees = false;  // the points' directions are trees, not strata
   bool tdTarget = false;        // Q learns D&K's one-step target, not returns
+  bool learns = false;          // the samples record learning targets (else frozen: that code
+                                // is left out of the pipelines)
   // With dqn: the network's shape (shaders/shared/dqn.h DqnShape), a specialization too.
   uint32_t dqnBins = 0, dqnWidth = 0, dqnHidden = 0, dqnOutputs = 0;
   uint32_t dqnGrid = 0;  // cells per axis of its baked grid (0: evaluated at every vertex)

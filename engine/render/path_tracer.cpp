@@ -93,7 +93,8 @@ void PathTracer::resetAccumulation() {
 }
 
 const gpu::ComputePipeline& PathTracer::specialized(const char* shader, const GpuScene& scene,
-                                                    const GuideFeatures& guide) {
+                                                    const GuideFeatures& guide,
+                                                    uint32_t bouncePhase) {
   // Specialization constants of shaders/include/features.glsl.
   std::vector<uint32_t> features = scene.specializationFeatures();
   features[shared::kSpecUseGuiding] = guide.points;
@@ -106,6 +107,8 @@ const gpu::ComputePipeline& PathTracer::specialized(const char* shader, const Gp
   features[shared::kSpecDqnHidden] = guide.dqnHidden;
   features[shared::kSpecDqnOutputs] = guide.dqnOutputs;
   features[shared::kSpecDqnGrid] = guide.dqnGrid;
+  features[shared::kSpecBouncePhase] = bouncePhase;
+  features[shared::kSpecLearn] = guide.learns;
   return variants_.get(shader, features);
 }
 
@@ -193,9 +196,14 @@ void PathTracer::recordFrame(gpu::PassRecorder& rec, const GpuScene& scene,
         .dispatchIndirect(queueState_, (bounce & 1) * sizeof(shared::QueueState) +
                                            offsetof(shared::QueueState, groupsX));
   };
-  const gpu::ComputePipeline& trace = specialized("pt_trace", scene, guide.features());
-  const gpu::ComputePipeline& shade = specialized("pt_shade", scene, guide.features());
-  const gpu::ComputePipeline& end = specialized("pt_end", scene, guide.features());
+  const GuideFeatures features = guide.features();
+  const gpu::ComputePipeline& trace = specialized("pt_trace", scene, features);
+  // The shade pass per bounce phase (camera hits, bounce 1, later): each leaves out the
+  // others' steps, which lavapipe would otherwise run masked at every bounce.
+  const gpu::ComputePipeline* shadeByPhase[3];
+  for (uint32_t phase = 0; phase < 3; ++phase)
+    shadeByPhase[phase] = &specialized("pt_shade", scene, features, shared::kBouncePhaseCamera + phase);
+  const gpu::ComputePipeline& end = specialized("pt_end", scene, features);
   // Wavefront: begin, then per bounce trace (extension rays) and shade (which
   // traces its shadow rays) over the live paths only, end.
   for (uint32_t s = 0; s < settings_.samplesPerFrame; ++s) {
@@ -206,6 +214,8 @@ void PathTracer::recordFrame(gpu::PassRecorder& rec, const GpuScene& scene,
     for (uint32_t bounce = 0; bounce <= settings_.maxDepth; ++bounce) {
       if (bounce > 0) switchQueues(s, bounce, false);
       queued(pass("path.trace", trace, s, bounce, 1), bounce);
+      const gpu::ComputePipeline& shade =
+          *shadeByPhase[shared::bouncePhaseOf(bounce) - shared::kBouncePhaseCamera];
       queued(pass("path.shade", shade, s, bounce, 0)
                  .write(QL_BIND_QUEUE_OUT, *queueIds_[(bounce + 1) & 1]),
              bounce);

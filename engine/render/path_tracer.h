@@ -18,6 +18,7 @@
 #include "engine/render/pipeline_variants.h"
 #include "engine/render/render_settings.h"
 #include "shaders/shared/scene_types.h"
+#include "shaders/shared/specialization.h"
 
 namespace qlight::render {
 
@@ -67,10 +68,11 @@ class PathTracer {
   RenderSettings settings_;
   // The wavefront passes (shaders/pt_*.comp) and the path state between them.
   gpu::ComputePipeline begin_, queue_;
-  // pt_shade and pt_end specialized per feature set (textures, guiding, light learning,
-  // non-triangle lights), keyed by shader and feature bits.
+  // The path passes specialized per feature set (textures, guiding, light learning,
+  // non-triangle lights, learning, ...) and, for pt_shade, bounce phase (kBouncePhase*).
   const gpu::ComputePipeline& specialized(const char* shader, const GpuScene& scene,
-                                          const GuideFeatures& guide);
+                                          const GuideFeatures& guide,
+                                          uint32_t bouncePhase = shared::kBouncePhaseAny);
   PipelineVariants variants_;
   std::unique_ptr<gpu::Buffer> paths_;
   std::unique_ptr<gpu::BufferView> pathsView_;

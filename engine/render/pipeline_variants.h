@@ -12,9 +12,6 @@
 
 namespace qlight::render {
 
-// One bit per feature of a specialization vector: the key of a pipeline variant.
-uint32_t featureKey(const std::vector<uint32_t>& features);
-
 class PipelineVariants {
  public:
   explicit PipelineVariants(const gpu::Context& ctx) : ctx_(ctx) {}
@@ -25,7 +22,10 @@ class PipelineVariants {
 
  private:
   const gpu::Context& ctx_;
-  std::map<std::pair<std::string, uint32_t>, std::unique_ptr<gpu::ComputePipeline>> variants_;
+  // Keyed by the whole vector: some constants are counts (the deep Q network's shape, the
+  // bounce phase), not switches.
+  std::map<std::pair<std::string, std::vector<uint32_t>>, std::unique_ptr<gpu::ComputePipeline>>
+      variants_;
 };
 
 }  // namespace qlight::render

@@ -27,3 +27,9 @@ layout(constant_id = QL_SPEC_DQN_HIDDEN) const uint kDqnHidden = 1u;
 layout(constant_id = QL_SPEC_DQN_OUTPUTS) const uint kDqnOutputs = 64u;
 // Cells per axis of its baked grid; 0: the paths evaluate the network at every vertex.
 layout(constant_id = QL_SPEC_DQN_GRID) const uint kDqnGrid = 0u;
+// The bounces this pipeline shades (kBouncePhase* in shared/specialization.h; path_common.glsl's
+// atCameraHit and atRouletteBounce read it).
+layout(constant_id = QL_SPEC_BOUNCE_PHASE) const uint kBouncePhase = 0u;
+// The guide learns: the paths record Q targets (returns or TD), NEE counts and light values.
+// A frozen guide's pipelines leave that code out.
+layout(constant_id = QL_SPEC_LEARN) const bool kLearning = true;

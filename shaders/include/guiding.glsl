@@ -312,7 +312,7 @@ float neeProbability(uint point) {
 }
 
 void recordShadowRay(uint point, bool unoccluded) {
-  if (!neeLearningOn(point)) return;
+  if (!kLearning || !neeLearningOn(point)) return;
   uint w = kNeeWordsPerPoint * point;
   atomicAdd(neeCounts[w], 1u);
   if (unoccluded) atomicAdd(neeCounts[w + 1u], 1u);

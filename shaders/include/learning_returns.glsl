@@ -46,6 +46,6 @@ void flushReturnRecords(uint path, uint flags, float radianceEnd) {
 }
 
 bool learningFromReturns() {
-  return kUseGuiding && (guiding.flags & (kGuideLearn | kGuideLearnReturns)) ==
+  return kUseGuiding && kLearning && (guiding.flags & (kGuideLearn | kGuideLearnReturns)) ==
                             (kGuideLearn | kGuideLearnReturns);
 }

@@ -19,4 +19,13 @@ layout(binding = QL_BIND_FRAME, scalar) readonly buffer Frame { FrameUniforms fr
 layout(push_constant, scalar) uniform Push { TracePush pc; };
 #include "include/path_state.glsl"
 
+// The bounce being shaded, where the pipeline is specialized on it (kBouncePhase) a constant:
+// code that only some bounces run is then absent from the others (lavapipe would run it masked).
+bool atCameraHit() {
+  return kBouncePhase == kBouncePhaseAny ? pc.bounce == 0u : kBouncePhase == kBouncePhaseCamera;
+}
+bool atRouletteBounce() {  // bounces 2 and on
+  return kBouncePhase == kBouncePhaseAny ? pc.bounce >= 2u : kBouncePhase == kBouncePhaseLater;
+}
+
 const float kInfinity = 1e30;

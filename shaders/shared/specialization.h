@@ -26,6 +26,11 @@
 #define QL_SPEC_DQN_HIDDEN 15
 #define QL_SPEC_DQN_OUTPUTS 16
 #define QL_SPEC_DQN_GRID 17  // cells per axis of the network's baked grid (0: none)
+// The bounces a shade pipeline shades (kBouncePhase*): each bounce's steps that the others
+// lack are left out of the others' pipelines.
+#define QL_SPEC_BOUNCE_PHASE 18
+// The paths record learning targets (Q, NEE counts, light values); else (frozen) that code is out.
+#define QL_SPEC_LEARN 19
 
 QL_BEGIN
 QL_CONST uint kSpecUseTextures = QL_SPEC_USE_TEXTURES;
@@ -43,7 +48,18 @@ QL_CONST uint kSpecDqnWidth = QL_SPEC_DQN_WIDTH;
 QL_CONST uint kSpecDqnHidden = QL_SPEC_DQN_HIDDEN;
 QL_CONST uint kSpecDqnOutputs = QL_SPEC_DQN_OUTPUTS;
 QL_CONST uint kSpecDqnGrid = QL_SPEC_DQN_GRID;
-QL_CONST uint kSpecPathFeatureCount = QL_SPEC_DQN_GRID + 1u;  // values to pass
+QL_CONST uint kSpecBouncePhase = QL_SPEC_BOUNCE_PHASE;
+QL_CONST uint kSpecLearn = QL_SPEC_LEARN;
+QL_CONST uint kSpecPathFeatureCount = QL_SPEC_LEARN + 1u;  // values to pass
+
+// Values of kSpecBouncePhase.
+QL_CONST uint kBouncePhaseAny = 0u;     // whichever bounce the push constant names
+QL_CONST uint kBouncePhaseCamera = 1u;  // bounce 0: the camera rays' hits
+QL_CONST uint kBouncePhaseSecond = 2u;  // bounce 1
+QL_CONST uint kBouncePhaseLater = 3u;   // bounces 2 and on (Russian roulette's)
+QL_FN uint bouncePhaseOf(uint bounce) {
+  return bounce == 0u ? kBouncePhaseCamera : bounce == 1u ? kBouncePhaseSecond : kBouncePhaseLater;
+}
 QL_END
 
 #endif
