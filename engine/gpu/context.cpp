@@ -252,9 +252,12 @@ void Context::createDevice() {
   bool atomicExt = hasDeviceExtension(physical_, VK_EXT_SHADER_ATOMIC_FLOAT_EXTENSION_NAME);
   if (atomicExt) v12.pNext = &atomicFloat;
   vkGetPhysicalDeviceFeatures2(physical_, &supported);
-  if (!v12.scalarBlockLayout || !v13.synchronization2)
+  // 64-bit storage-buffer atomics: the learning targets' fixed-point sums take one atomic each
+  // (every desktop GPU and lavapipe have them).
+  if (!v12.scalarBlockLayout || !v13.synchronization2 || !v12.shaderBufferInt64Atomics ||
+      !supported.features.shaderInt64)
     throw std::runtime_error(std::string("device \"") + properties_.deviceName +
-                             "\" lacks scalarBlockLayout or synchronization2");
+                             "\" lacks scalarBlockLayout, synchronization2 or 64-bit atomics");
 
   floatAtomicAdd_ = atomicExt && atomicFloat.shaderBufferFloat32AtomicAdd;
 
@@ -265,6 +268,7 @@ void Context::createDevice() {
 
   VkPhysicalDeviceVulkan12Features enable12{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_VULKAN_1_2_FEATURES};
   enable12.scalarBlockLayout = VK_TRUE;
+  enable12.shaderBufferInt64Atomics = VK_TRUE;
   enable12.hostQueryReset = v12.hostQueryReset;
   enable12.pNext = floatAtomicAdd_ ? &enableAtomic : nullptr;
   VkPhysicalDeviceVulkan13Features enable13{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_VULKAN_1_3_FEATURES};
@@ -272,7 +276,7 @@ void Context::createDevice() {
   enable13.maintenance4 = v13.maintenance4;
   enable13.pNext = &enable12;
   VkPhysicalDeviceFeatures2 enable{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_FEATURES_2};
-  enable.features.shaderInt64 = supported.features.shaderInt64;
+  enable.features.shaderInt64 = VK_TRUE;
   enable.features.shaderStorageImageWriteWithoutFormat =
       supported.features.shaderStorageImageWriteWithoutFormat;
   enable.pNext = &enable13;

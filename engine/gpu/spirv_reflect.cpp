@@ -175,6 +175,20 @@ ReflectedShader reflectSpirv(std::span<const uint32_t> words) {
   std::sort(out.bindings.begin(), out.bindings.end(), [](auto& a, auto& b) {
     return a.set != b.set ? a.set < b.set : a.binding < b.binding;
   });
+  // Aliased views of one buffer (e.g. uint and uint64_t) share a binding: one descriptor.
+  std::vector<ReflectedBinding> merged;
+  for (const ReflectedBinding& b : out.bindings) {
+    if (!merged.empty() && merged.back().set == b.set && merged.back().binding == b.binding) {
+      ReflectedBinding& m = merged.back();
+      if (m.type != b.type || m.count != b.count)
+        throw std::runtime_error("SPIR-V binding " + std::to_string(b.binding) + " (" + m.name +
+                                 ", " + b.name + ") is declared with two descriptor types");
+      m.readOnly = m.readOnly && b.readOnly;
+      continue;
+    }
+    merged.push_back(b);
+  }
+  out.bindings = std::move(merged);
   return out;
 }
 

@@ -202,7 +202,8 @@ void PathTracer::recordFrame(gpu::PassRecorder& rec, const GpuScene& scene,
   // others' steps, which lavapipe would otherwise run masked at every bounce.
   const gpu::ComputePipeline* shadeByPhase[3];
   for (uint32_t phase = 0; phase < 3; ++phase)
-    shadeByPhase[phase] = &specialized("pt_shade", scene, features, shared::kBouncePhaseCamera + phase);
+    shadeByPhase[phase] =
+        &specialized("pt_shade", scene, features, shared::kBouncePhaseCamera + phase);
   const gpu::ComputePipeline& end = specialized("pt_end", scene, features);
   // Wavefront: begin, then per bounce trace (extension rays) and shade (which
   // traces its shadow rays) over the live paths only, end.

@@ -10,10 +10,12 @@ layout(binding = QL_BIND_GRID_BUCKETS) uniform usamplerBuffer uGridBuckets;
 layout(binding = QL_BIND_GRID_POINTS) uniform usamplerBuffer uGridPoints;
 layout(binding = QL_BIND_Q_CDF) uniform samplerBuffer uQCdf;
 layout(binding = QL_BIND_Q_SUM, scalar) buffer QSum { uint qSum[]; };  // (lo, hi) pairs
+// The same sums as 64-bit words, for one atomic a target where the pair took two (the carry).
+layout(binding = QL_BIND_Q_SUM, scalar) buffer QSum64 { uint64_t qSum64[]; };
 layout(binding = QL_BIND_Q_COUNT, scalar) buffer QCount { uint qCount[]; };
 layout(binding = QL_BIND_SPAWN, scalar) buffer Spawn { vec4 spawnEntries[]; };  // 2 per slot
 layout(binding = QL_BIND_V_CDF) uniform samplerBuffer uVCdf;
-layout(binding = QL_BIND_V_SUM, scalar) buffer VSum { uint vSum[]; };  // (lo, hi) pairs
+layout(binding = QL_BIND_V_SUM, scalar) buffer VSum64 { uint64_t vSum64[]; };  // (lo, hi) pairs
 layout(binding = QL_BIND_V_COUNT, scalar) buffer VCount { uint vCount[]; };
 layout(binding = QL_BIND_POINT_UPDATES) uniform usamplerBuffer uPointUpdates;
 // Direction trees (kGuideTree): QL_BIND_Q_CDF holds the slots' weights (4 a texel, one texel a
@@ -241,12 +243,12 @@ float lookedUpQ(GuidedRow r, GuidedLookup g, float cosTheta) {
   return cosTheta > 0.0 && g.pdf > 0.0 ? g.pdf * guidedIrradiance(r) / cosTheta : -1.0;
 }
 
-// Adds a non-negative target to a (lo, hi) fixed-point sum; the carry out of
-// lo goes to hi, so the total is exact whatever order the atomics run in.
-uvec2 fixedPoint(float target) {
+// A non-negative target as a 64-bit fixed-point value: integer sums are exact whatever
+// order the atomics run in. The update passes read each as (lo, hi) words (fixedSumToFloat).
+uint64_t fixedPoint64(float target) {
   float x = floor(min(target, kTargetMax) * kTargetScale);
   float hi = floor(x / kTwoPow32);
-  return uvec2(uint(x - hi * kTwoPow32), uint(hi));
+  return (uint64_t(uint(hi)) << 32) | uint64_t(uint(x - hi * kTwoPow32));
 }
 
 void recordQTarget(uint entry, float target) {
@@ -255,9 +257,7 @@ void recordQTarget(uint entry, float target) {
     qSum[8u * entry + 7u] = floatBitsToUint(target);
     return;
   }
-  uvec2 v = fixedPoint(target);
-  uint old = atomicAdd(qSum[2u * entry], v.x);
-  atomicAdd(qSum[2u * entry + 1u], v.y + (old + v.x < old ? 1u : 0u));
+  atomicAdd(qSum64[entry], fixedPoint64(target));
   atomicAdd(qCount[entry], 1u);
 }
 
@@ -321,8 +321,6 @@ void recordShadowRay(uint point, bool unoccluded) {
 void recordVTarget(uint point, uint light, float target) {
   if (!(target >= 0.0) || isinf(target)) return;
   uint entry = point * guiding.lightCount + light;
-  uvec2 v = fixedPoint(target);
-  uint old = atomicAdd(vSum[2u * entry], v.x);
-  atomicAdd(vSum[2u * entry + 1u], v.y + (old + v.x < old ? 1u : 0u));
+  atomicAdd(vSum64[entry], fixedPoint64(target));
   atomicAdd(vCount[entry], 1u);
 }
