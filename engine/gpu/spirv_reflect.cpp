@@ -182,7 +182,8 @@ ReflectedShader reflectSpirv(std::span<const uint32_t> words) {
       ReflectedBinding& m = merged.back();
       if (m.type != b.type || m.count != b.count)
         throw std::runtime_error("SPIR-V binding " + std::to_string(b.binding) + " (" + m.name +
-                                 ", " + b.name + ") is declared with two descriptor types");
+                                 ", " + b.name +
+                                 ") is declared with two descriptor types or counts");
       m.readOnly = m.readOnly && b.readOnly;
       continue;
     }

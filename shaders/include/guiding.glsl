@@ -9,13 +9,14 @@ layout(binding = QL_BIND_CACHE_POINTS) uniform samplerBuffer uCachePoints;  // 2
 layout(binding = QL_BIND_GRID_BUCKETS) uniform usamplerBuffer uGridBuckets;
 layout(binding = QL_BIND_GRID_POINTS) uniform usamplerBuffer uGridPoints;
 layout(binding = QL_BIND_Q_CDF) uniform samplerBuffer uQCdf;
-layout(binding = QL_BIND_Q_SUM, scalar) buffer QSum { uint qSum[]; };  // (lo, hi) pairs
-// The same sums as 64-bit words, for one atomic a target where the pair took two (the carry).
+// Q's target sums, one 64-bit fixed-point word an entry (one atomic a target); deep Q reads
+// the same binding as 32-bit words (its replay records).
 layout(binding = QL_BIND_Q_SUM, scalar) buffer QSum64 { uint64_t qSum64[]; };
+layout(binding = QL_BIND_Q_SUM, scalar) buffer QSum { uint qSum[]; };
 layout(binding = QL_BIND_Q_COUNT, scalar) buffer QCount { uint qCount[]; };
 layout(binding = QL_BIND_SPAWN, scalar) buffer Spawn { vec4 spawnEntries[]; };  // 2 per slot
 layout(binding = QL_BIND_V_CDF) uniform samplerBuffer uVCdf;
-layout(binding = QL_BIND_V_SUM, scalar) buffer VSum64 { uint64_t vSum64[]; };  // (lo, hi) pairs
+layout(binding = QL_BIND_V_SUM, scalar) buffer VSum64 { uint64_t vSum64[]; };  // fixed point
 layout(binding = QL_BIND_V_COUNT, scalar) buffer VCount { uint vCount[]; };
 layout(binding = QL_BIND_POINT_UPDATES) uniform usamplerBuffer uPointUpdates;
 // Direction trees (kGuideTree): QL_BIND_Q_CDF holds the slots' weights (4 a texel, one texel a
@@ -246,9 +247,7 @@ float lookedUpQ(GuidedRow r, GuidedLookup g, float cosTheta) {
 // A non-negative target as a 64-bit fixed-point value: integer sums are exact whatever
 // order the atomics run in. The update passes read each as (lo, hi) words (fixedSumToFloat).
 uint64_t fixedPoint64(float target) {
-  float x = floor(min(target, kTargetMax) * kTargetScale);
-  float hi = floor(x / kTwoPow32);
-  return (uint64_t(uint(hi)) << 32) | uint64_t(uint(x - hi * kTwoPow32));
+  return uint64_t(floor(min(target, kTargetMax) * kTargetScale));
 }
 
 void recordQTarget(uint entry, float target) {
