@@ -42,7 +42,7 @@ void main() {
   if (id >= pc.pathCount || pc.lightCount == 0u) return;
   Rng rng = rngSeed(id, pc.seed, 0x5eedu);
   float selectPdf;
-  GpuLight l = lights[selectLight(rngNextFloat(rng), pc.lightCount, selectPdf)];
+  GpuLight l = lightAt(selectLight(rngNextFloat(rng), pc.lightCount, selectPdf));
   vec3 origin, dir;
   if (l.type == kLightTriangle) {
     vec3 b = sampleTriangleBarycentrics(rngNext2(rng));

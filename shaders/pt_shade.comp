@@ -98,7 +98,7 @@ uint chooseLight(uint point, float neeP, float u, out float selectPdf) {
 void shadeEscaped(inout PathState st, Switches sw) {
   float skyLuminance = 0.0;
   uint last = frame.lightCount - 1u;
-  if (kUseNonTriangleLights && frame.lightCount > 0u && lights[last].type == kLightSky) {
+  if (kUseNonTriangleLights && frame.lightCount > 0u && lightAt(last).type == kLightSky) {
     SkySeen sky = skySeenFrom(last, st.dir);
     float w = 1.0;
     if (!atCameraHit()) {  // camera rays see the sky unweighted
@@ -138,7 +138,7 @@ vec3 addEmission(inout PathState st, Surface s, Switches sw) {
       if (li == kNoLight) w = 1.0;
       else if (!sw.emitterHits) w = 0.0;
       else if (sw.mis) {
-        float lightPdf = triangleLightPdf(lights[li], lightSelectionPdf(st.prevPoint, li), st.dir,
+        float lightPdf = triangleLightPdf(lightAt(li), lightSelectionPdf(st.prevPoint, li), st.dir,
                                           st.hitT * length(st.dir));
         w = powerHeuristic(1.0, st.prevScatterPdf, 1.0, lightPdf);
       }

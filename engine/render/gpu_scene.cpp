@@ -204,7 +204,8 @@ void GpuScene::uploadStatic() {
       std::make_unique<gpu::BufferView>(ctx_, *vertices_, VK_FORMAT_R32G32B32A32_SFLOAT);
   materialsView_ =
       std::make_unique<gpu::BufferView>(ctx_, *materials_, VK_FORMAT_R32G32B32A32_SFLOAT);
-  textures_ = makeBuffer(ctx_, textures, "scene.textures");
+  textures_ = makeBuffer(ctx_, textures, "scene.textures", texel);
+  texturesView_ = std::make_unique<gpu::BufferView>(ctx_, *textures_, VK_FORMAT_R32G32B32A32_UINT);
   texels_ = makeBuffer(ctx_, texels, "scene.texels", VK_BUFFER_USAGE_UNIFORM_TEXEL_BUFFER_BIT);
   texelView_ = std::make_unique<gpu::BufferView>(ctx_, *texels_, VK_FORMAT_R32_UINT);
 }
@@ -291,7 +292,9 @@ void GpuScene::uploadLights(const SceneDraw& draw) {
   constexpr VkBufferUsageFlags texel = VK_BUFFER_USAGE_UNIFORM_TEXEL_BUFFER_BIT;
   lightCdfView_.reset();
   triangleView_.reset();
-  lightBuffer_ = makeBuffer(ctx_, lights_, "scene.lights");
+  lightView_.reset();
+  lightBuffer_ = makeBuffer(ctx_, lights_, "scene.lights", texel);
+  lightView_ = std::make_unique<gpu::BufferView>(ctx_, *lightBuffer_, VK_FORMAT_R32G32B32A32_UINT);
   lightCdf_ = makeBuffer(ctx_, cdf, "scene.lightCdf", texel);
   triangleBuffer_ = makeBuffer(ctx_, triangles_, "scene.triangles", texel);
   lightCdfView_ = std::make_unique<gpu::BufferView>(ctx_, *lightCdf_, VK_FORMAT_R32_SFLOAT);
@@ -358,8 +361,11 @@ void GpuScene::update(const SceneDraw& draw) {
     inst.mesh = d.mesh;
     instances.push_back(inst);
   }
-  instances_ = makeBuffer(ctx_, instances, "scene.instances");
   constexpr VkBufferUsageFlags texel = VK_BUFFER_USAGE_UNIFORM_TEXEL_BUFFER_BIT;
+  instancesView_.reset();
+  instances_ = makeBuffer(ctx_, instances, "scene.instances", texel);
+  instancesView_ =
+      std::make_unique<gpu::BufferView>(ctx_, *instances_, VK_FORMAT_R32G32B32A32_UINT);
   bvhNodesView_.reset();
   bvhInstancesView_.reset();
   bvhNodes_ = makeBuffer(ctx_, accel_.nodeTexels(), "bvh.nodes", texel);
@@ -397,7 +403,7 @@ std::vector<uint32_t> GpuScene::specializationFeatures() const {
 
 void GpuScene::bind(gpu::PassBuilder& pass) const {
   bindSurfaces(pass);
-  pass.read(QL_BIND_LIGHTS, *lightBuffer_)
+  pass.read(QL_BIND_LIGHTS, *lightView_)
       .read(QL_BIND_LIGHT_CDF, *lightCdfView_)
       .read(QL_BIND_ENV_TEXELS, *envTexelsView_)
       .read(QL_BIND_ENV_CDF, *envCdfView_);
@@ -410,9 +416,9 @@ void GpuScene::bindSurfaces(gpu::PassBuilder& pass) const {
       .read(QL_BIND_BVH_INSTANCES, *bvhInstancesView_)
       .read(QL_BIND_TRIANGLES, *triangleView_)
       .read(QL_BIND_VERTICES, *verticesView_)
-      .read(QL_BIND_INSTANCES, *instances_)
+      .read(QL_BIND_INSTANCES, *instancesView_)
       .read(QL_BIND_MATERIALS, *materialsView_)
-      .read(QL_BIND_TEXTURES, *textures_)
+      .read(QL_BIND_TEXTURES, *texturesView_)
       .read(QL_BIND_TEXELS, *texelView_);
 }
 

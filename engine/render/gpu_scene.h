@@ -107,7 +107,7 @@ class GpuScene {
 
   std::unique_ptr<gpu::Buffer> vertices_, triangleBuffer_, materials_, textures_, texels_;
   std::unique_ptr<gpu::BufferView> texelView_, verticesView_, materialsView_, triangleView_,
-      lightCdfView_;
+      lightCdfView_, texturesView_, lightView_, instancesView_;
   std::unique_ptr<gpu::Buffer> bvhNodes_, bvhTris_, bvhInstances_, instances_, lightBuffer_,
       lightCdf_;
   std::unique_ptr<gpu::BufferView> bvhNodesView_, bvhTrisView_, bvhInstancesView_;

@@ -1,6 +1,28 @@
 // Light selection (by power, from an inclusive CDF) and light sampling for
 // next event estimation, plus the pdf of hitting a light by a scattered ray.
-layout(binding = QL_BIND_LIGHTS, scalar) readonly buffer Lights { GpuLight lights[]; };
+layout(binding = QL_BIND_LIGHTS) uniform usamplerBuffer uLights;  // kLightTexels each
+
+// Light i (a texel buffer for the reason in scene_access.glsl); unused fields are not fetched.
+GpuLight lightAt(uint i) {
+  int at = int(kLightTexels * i);
+  uvec4 a = texelFetch(uLights, at), b = texelFetch(uLights, at + 1),
+        c = texelFetch(uLights, at + 2), d = texelFetch(uLights, at + 3),
+        e = texelFetch(uLights, at + 4);
+  GpuLight l;
+  l.position = uintBitsToFloat(a.xyz);
+  l.type = a.w;
+  l.edge1 = uintBitsToFloat(b.xyz);
+  l.triangle = b.w;
+  l.edge2 = uintBitsToFloat(c.xyz);
+  l.area = uintBitsToFloat(c.w);
+  l.emission = uintBitsToFloat(d.xyz);
+  l.cosInner = uintBitsToFloat(d.w);
+  l.cosOuter = uintBitsToFloat(e.x);
+  l.range = uintBitsToFloat(e.y);
+  l.flags = e.z;
+  l.power = uintBitsToFloat(e.w);
+  return l;
+}
 layout(binding = QL_BIND_LIGHT_CDF) uniform samplerBuffer uLightCdf;
 float lightCdfAt(uint i) { return texelFetch(uLightCdf, int(i)).x; }
 layout(binding = QL_BIND_ENV_TEXELS) uniform samplerBuffer uEnvTexels;
@@ -71,7 +93,7 @@ struct SkySeen {
 
 // The sky seen in world direction `dir`; `last` is the last light, a sky one.
 SkySeen skySeenFrom(uint last, vec3 dir) {
-  GpuLight l = lights[last];
+  GpuLight l = lightAt(last);
   SkySeen s;
   if (skyHasMap(l)) {
     EnvironmentMap e = environmentMapHeader();
@@ -95,7 +117,7 @@ LightSample sampleLight(vec3 x, vec2 u, uint index, float selectPdf) {
   s.distance = 1e30;
   s.radiance = vec3(0.0);
   s.direction = vec3(0.0, 0.0, 1.0);
-  GpuLight l = lights[index];
+  GpuLight l = lightAt(index);
   if (l.type == kLightTriangle) {
     vec3 bary = sampleTriangleBarycentrics(u);
     vec3 p = l.position + bary.y * l.edge1 + bary.z * l.edge2;

@@ -13,10 +13,36 @@ layout(binding = QL_BIND_BVH_INSTANCES) uniform samplerBuffer uBvhInstances;
 
 layout(binding = QL_BIND_TRIANGLES) uniform usamplerBuffer uTriangles;  // 2 texels each
 layout(binding = QL_BIND_VERTICES) uniform samplerBuffer uVertices;     // 2 texels each
-layout(binding = QL_BIND_INSTANCES, scalar) readonly buffer Instances { GpuInstance instances[]; };
+// Tables read at per-lane indices are texel buffers: on lavapipe a texel fetch loads all lanes
+// at once where a storage-buffer load loops over the lanes for each 32-bit word. Integer
+// views, so the uint fields' bits come back as stored on any GPU.
+layout(binding = QL_BIND_INSTANCES) uniform usamplerBuffer uInstances;  // kInstanceTexels each
 layout(binding = QL_BIND_MATERIALS) uniform samplerBuffer uMaterials;   // 4 texels each
-layout(binding = QL_BIND_TEXTURES, scalar) readonly buffer Textures { GpuTexture textures[]; };
+layout(binding = QL_BIND_TEXTURES) uniform usamplerBuffer uTextures;    // 1 texel each
 layout(binding = QL_BIND_TEXELS) uniform usamplerBuffer uTexels;
+
+// Only the fields a caller uses are fetched: the compiler drops the others' texels.
+GpuInstance instanceAt(uint i) {
+  int at = int(kInstanceTexels * i);
+  GpuInstance inst;
+  for (int r = 0; r < 3; ++r) {
+    inst.normalFromObject[r] = uintBitsToFloat(texelFetch(uInstances, at + r));
+    inst.tangentFromObject[r] = uintBitsToFloat(texelFetch(uInstances, at + 3 + r));
+  }
+  uvec4 info = texelFetch(uInstances, at + 6);
+  inst.firstTriangle = info.x;
+  inst.mesh = info.y;
+  inst.worldScale = uintBitsToFloat(info.z);
+  inst.pad1 = 0u;
+  return inst;
+}
+
+uint instanceFirstTriangle(uint i) { return texelFetch(uInstances, int(kInstanceTexels * i + 6u)).x; }
+
+GpuTexture textureAt(uint i) {
+  uvec4 t = texelFetch(uTextures, int(i));
+  return GpuTexture(t.x, t.y, t.z, t.w);
+}
 
 GpuTriangle triangleAt(uint i) {
   uvec4 a = texelFetch(uTriangles, int(2u * i));
@@ -144,7 +170,7 @@ vec4 bilinear(GpuTexture t, vec2 uv) {
 // the level is lod + log2 of the texture's side, between 0 and its last.
 const float kFinestLod = -64.0;
 vec4 sampleTextureAt(int index, vec2 uv, float lod) {
-  GpuTexture t = textures[index];
+  GpuTexture t = textureAt(index);
   uint levels = max(t.flags >> kTextureLevelShift, 1u);
   float level = lod + 0.5 * log2(float(t.width) * float(t.height));
   level = isnan(level) ? 0.0 : clamp(level, 0.0, float(levels - 1u));
@@ -202,7 +228,7 @@ vec3 normalMapped(Surface s, vec3 n) {
 
 // coneWidth: the ray cone's width at the hit (0: none, textures at their finest level).
 Surface resolveSurfaceWithCone(BvhHit hit, vec3 origin, vec3 dir, float coneWidth) {
-  GpuInstance inst = instances[hit.instance];
+  GpuInstance inst = instanceAt(hit.instance);
   Surface s;
   s.triangle = inst.firstTriangle + hit.primitive;
   GpuTriangle tri = triangleAt(s.triangle);
@@ -291,7 +317,7 @@ vec3 surfaceEmission(Surface s) {
 // sample's ray sees a surface of alpha a with probability a, so the mean is the blend).
 bool alphaAcceptsHit(uint instance, uint primitive, float u, float v, vec3 origin, vec3 dir) {
   if (!kUseAlphaTest) return true;
-  GpuTriangle tri = triangleAt(instances[instance].firstTriangle + primitive);
+  GpuTriangle tri = triangleAt(instanceFirstTriangle(instance) + primitive);
   GpuMaterial m = materialAt(tri.material);
   uint flags = uint(m.flags);
   if ((flags & (kMaterialAlphaMask | kMaterialAlphaBlend)) == 0u) return true;

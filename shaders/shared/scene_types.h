@@ -59,6 +59,8 @@ struct GpuInstance {
   uint pad1;
 };
 QL_CHECK_SIZE(GpuInstance, 112);
+// RGBA32UI texels an instance takes in its texel buffer (include/scene_access.glsl).
+QL_CONST uint kInstanceTexels = 7u;
 
 QL_CONST uint kMaterialDoubleSided = 1u;
 QL_CONST uint kMaterialUnlit = 2u;  // KHR_materials_unlit: emits its base colour, scatters nothing
@@ -147,6 +149,8 @@ struct GpuLight {
   float power;  // selection weight (proportional to emitted power)
 };
 QL_CHECK_SIZE(GpuLight, 80);
+// RGBA32UI texels a light takes in its texel buffer (include/lights.glsl).
+QL_CONST uint kLightTexels = 5u;
 
 struct GpuCamera {
   vec3 position;
