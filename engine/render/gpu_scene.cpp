@@ -19,6 +19,11 @@
 namespace qlight::render {
 namespace {
 
+// The shaders read these tables as RGBA32UI texels (instanceAt, lightAt, textureAt).
+static_assert(sizeof(shared::GpuInstance) == 16 * shared::kInstanceTexels);
+static_assert(sizeof(shared::GpuLight) == 16 * shared::kLightTexels);
+static_assert(sizeof(shared::GpuTexture) == 16);
+
 using shared::GpuLight;
 using shared::GpuMaterial;
 using shared::GpuTexture;

@@ -37,7 +37,9 @@ GpuInstance instanceAt(uint i) {
   return inst;
 }
 
-uint instanceFirstTriangle(uint i) { return texelFetch(uInstances, int(kInstanceTexels * i + 6u)).x; }
+uint instanceFirstTriangle(uint i) {
+  return texelFetch(uInstances, int(kInstanceTexels * i + 6u)).x;
+}
 
 GpuTexture textureAt(uint i) {
   uvec4 t = texelFetch(uTextures, int(i));
