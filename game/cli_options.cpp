@@ -51,6 +51,10 @@ void addTracingOptions(CLI::App& app, render::RenderSettings& s) {
       ->transform(CLI::CheckedTransformer(estimatorWords(), CLI::ignore_case));
   app.add_option("--rr", s.russianRoulette, "Russian roulette: on|off")
       ->transform(CLI::CheckedTransformer(onOffWords(), CLI::ignore_case));
+  app.add_option("--trace-kernel", s.traceKernel,
+                 "extension rays traced in the shade pass (fused) or a pass of their own "
+                 "(separate); auto: fused on a CPU device, separate on a GPU (same image)")
+      ->transform(CLI::CheckedTransformer(traceKernelWords(), CLI::ignore_case));
 }
 
 void addGuidingOptions(CLI::App& app, guiding::GuidingSettings& g, GuidingCli& cli) {

@@ -20,6 +20,13 @@ inline const Words<render::Estimator>& estimatorWords() {
   return words;
 }
 
+inline const Words<render::TraceKernel>& traceKernelWords() {
+  static const Words<render::TraceKernel> words{{"auto", render::TraceKernel::Auto},
+                                                {"fused", render::TraceKernel::Fused},
+                                                {"separate", render::TraceKernel::Separate}};
+  return words;
+}
+
 inline const Words<image::Tonemap>& tonemapWords() {
   static const Words<image::Tonemap> words{{"aces", image::Tonemap::Aces},
                                            {"clamp", image::Tonemap::Clamp}};

@@ -213,6 +213,7 @@ const std::vector<Field>& fields() {
       number(kRender, "seed", "--seed", &R::seed, kAnyUint),
       word(kRender, "estimator", "--estimator", &R::estimator, estimatorWords()),
       boolean(kRender, "rr", "--rr", &R::russianRoulette),
+      word(kRender, "trace_kernel", "--trace-kernel", &R::traceKernel, traceKernelWords()),
       number(kRender, "exposure", "--exposure", &R::exposure, kExposure),
       number(kRender, "temporal_blend", "--temporal-blend", &R::temporalBlend, kTemporalBlend),
       word(kRender, "tonemap", "--tonemap", &R::tonemap, tonemapWords()),

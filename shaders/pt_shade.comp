@@ -393,6 +393,15 @@ void main() {
   uint path = queuedPath(gl_GlobalInvocationID.x);
   if (path == kNoPath) return;
   PathState st = loadPath(path);
+  if (kTraceInShade) {
+    BvhHit hit;
+    bool found = traceClosest(st.origin, st.dir, kInfinity, hit);
+    st.hitT = found ? hit.t : -1.0;
+    st.hitU = hit.u;
+    st.hitV = hit.v;
+    st.hitInstance = hit.instance;
+    st.hitPrimitive = hit.primitive;
+  }
   Rng rng;
   rng.state = st.rng;
   Switches sw = frameSwitches();

@@ -85,7 +85,7 @@ SPARE_COLOURS = ["#9467bd", "#8c564b", "#e377c2", "#bcbd22", "#17becf", "#ff7f0e
 PASS_CATEGORIES = [
     ("camera + queue", "#7f7f7f", lambda p: p in ("path.begin", "path.queue")),
     ("trace", "#1f77b4", lambda p: p == "path.trace"),
-    ("shade (incl. point search)", "#ff7f0e", lambda p: p == "path.shade"),
+    ("shade (point search; fused: extension rays too)", "#ff7f0e", lambda p: p == "path.shade"),
     ("accumulate", "#bcbd22", lambda p: p in ("path.end", "stats.clear") or p.startswith("accumulate.")),
     ("Q update", "#2ca02c", lambda p: p == "guiding.q_update"),
     ("CDF scans", "#9467bd", lambda p: p.startswith("prefix_sum.")),

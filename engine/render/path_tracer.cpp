@@ -23,6 +23,12 @@ FrameCounters& FrameCounters::operator+=(const FrameCounters& o) {
   return *this;
 }
 
+bool tracesInShade(TraceKernel kernel, const gpu::Context& ctx) {
+  if (kernel == TraceKernel::Auto)
+    return ctx.properties().deviceType == VK_PHYSICAL_DEVICE_TYPE_CPU;
+  return kernel == TraceKernel::Fused;
+}
+
 PathTracer::PathTracer(const gpu::Context& ctx, const RenderSettings& settings)
     : ctx_(ctx),
       begin_(ctx, "pt_begin"),
@@ -109,6 +115,7 @@ const gpu::ComputePipeline& PathTracer::specialized(const char* shader, const Gp
   features[shared::kSpecDqnGrid] = guide.dqnGrid;
   features[shared::kSpecBouncePhase] = bouncePhase;
   features[shared::kSpecLearn] = guide.learns;
+  features[shared::kSpecTraceInShade] = tracesInShade(settings_.traceKernel, ctx_);
   return variants_.get(shader, features);
 }
 
@@ -197,7 +204,8 @@ void PathTracer::recordFrame(gpu::PassRecorder& rec, const GpuScene& scene,
                                            offsetof(shared::QueueState, groupsX));
   };
   const GuideFeatures features = guide.features();
-  const gpu::ComputePipeline& trace = specialized("pt_trace", scene, features);
+  const bool fused = tracesInShade(settings_.traceKernel, ctx_);
+  const gpu::ComputePipeline* trace = fused ? nullptr : &specialized("pt_trace", scene, features);
   // The shade pass per bounce phase (camera hits, bounce 1, later): each leaves out the
   // others' steps, which lavapipe would otherwise run masked at every bounce.
   const gpu::ComputePipeline* shadeByPhase[3];
@@ -205,8 +213,8 @@ void PathTracer::recordFrame(gpu::PassRecorder& rec, const GpuScene& scene,
     shadeByPhase[phase] =
         &specialized("pt_shade", scene, features, shared::kBouncePhaseCamera + phase);
   const gpu::ComputePipeline& end = specialized("pt_end", scene, features);
-  // Wavefront: begin, then per bounce trace (extension rays) and shade (which
-  // traces its shadow rays) over the live paths only, end.
+  // Wavefront: begin, then per bounce trace (extension rays; fused: in the shade pass) and
+  // shade (which traces its shadow rays) over the live paths only, end.
   for (uint32_t s = 0; s < settings_.samplesPerFrame; ++s) {
     pass("path.begin", begin_, s, 0, 0)
         .write(QL_BIND_QUEUE_OUT, *queueIds_[0])
@@ -214,7 +222,7 @@ void PathTracer::recordFrame(gpu::PassRecorder& rec, const GpuScene& scene,
     switchQueues(s, 0, true);
     for (uint32_t bounce = 0; bounce <= settings_.maxDepth; ++bounce) {
       if (bounce > 0) switchQueues(s, bounce, false);
-      queued(pass("path.trace", trace, s, bounce, 1), bounce);
+      if (trace) queued(pass("path.trace", *trace, s, bounce, 1), bounce);
       const gpu::ComputePipeline& shade =
           *shadeByPhase[shared::bouncePhaseOf(bounce) - shared::kBouncePhaseCamera];
       queued(pass("path.shade", shade, s, bounce, 0)

@@ -31,6 +31,9 @@ struct FrameCounters {
   FrameCounters& operator+=(const FrameCounters& o);
 };
 
+// Whether `kernel` fuses the extension rays' trace into the shade pass on this device.
+bool tracesInShade(TraceKernel kernel, const gpu::Context& ctx);
+
 class PathTracer {
  public:
   PathTracer(const gpu::Context& ctx, const RenderSettings& settings);

@@ -26,6 +26,7 @@ struct RenderStats {
   render::FrameCounters counters;
   std::map<std::string, double> gpuMs;  // summed over frames, per pass name
   std::string device;
+  bool traceInShade = false;  // the extension rays' trace fused into the shade pass
   uint32_t lights = 0;
   bool fallbackSky = false;
   bool environmentLight = false;  // the user's environment lights the scene (not black)

@@ -162,6 +162,7 @@ RenderStats Renderer::newStats() const {
   s.width = tracer_.settings().width;
   s.height = tracer_.settings().height;
   s.device = ctx_.deviceName();
+  s.traceInShade = render::tracesInShade(tracer_.settings().traceKernel, ctx_);
   s.lights = scene_.lightCount();
   s.fallbackSky = scene_.usesFallbackSky();
   s.environmentLight = scene_.hasEnvironment();

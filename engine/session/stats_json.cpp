@@ -22,6 +22,7 @@ nlohmann::json statsToJson(const RenderStats& s) {
   j["mean_path_length"] = double(c.pathVertices) / paths;
   j["invalid_samples"] = c.invalidSamples;
   j["device"] = s.device;
+  j["trace_kernel"] = s.traceInShade ? "fused" : "separate";
   j["lights"] = s.lights;
   j["fallback_sky"] = s.fallbackSky;
   j["environment_light"] = s.environmentLight;

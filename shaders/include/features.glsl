@@ -33,3 +33,5 @@ layout(constant_id = QL_SPEC_BOUNCE_PHASE) const uint kBouncePhase = 0u;
 // The guide learns: the paths record Q targets (returns or TD), NEE counts and light values.
 // A frozen guide's pipelines leave that code out.
 layout(constant_id = QL_SPEC_LEARN) const bool kLearning = true;
+// The shade pass traces the ray to the hit it shades itself (fused), else the trace pass did.
+layout(constant_id = QL_SPEC_TRACE_IN_SHADE) const bool kTraceInShade = false;

@@ -45,9 +45,11 @@ PathState loadPath(uint path) {
   t = pathTexel(path, kPathTexelDir); s.dir = t.xyz; s.rng = floatBitsToUint(t.w);
   t = pathTexel(path, kPathTexelThroughput); s.throughput = t.xyz; s.prevScatterPdf = t.w;
   t = pathTexel(path, kPathTexelRadianceFlags); s.radiance = t.xyz; s.flags = floatBitsToUint(t.w);
-  t = pathTexel(path, kPathTexelHit);
-  s.hitT = t.x; s.hitU = t.y; s.hitV = t.z; s.hitInstance = floatBitsToUint(t.w);
-  s.hitPrimitive = floatBitsToUint(pathTexel(path, kPathTexelHitPrimitive).x);
+  if (!kTraceInShade) {
+    t = pathTexel(path, kPathTexelHit);
+    s.hitT = t.x; s.hitU = t.y; s.hitV = t.z; s.hitInstance = floatBitsToUint(t.w);
+    s.hitPrimitive = floatBitsToUint(pathTexel(path, kPathTexelHitPrimitive).x);
+  }
   uvec4 c = floatBitsToUint(pathTexel(path, kPathTexelCounters));
   s.vertices = c.x & 0xffffu; s.covered = c.x >> 16u;
   s.rays = c.z & 0xffffu; s.shadowRays = c.z >> 16u; s.prevEntry = c.w;
