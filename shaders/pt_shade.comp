@@ -14,6 +14,7 @@
 #include "include/path_common.glsl"
 #include "include/path_queue.glsl"
 #include "include/learning_returns.glsl"
+#include "include/camera_path.glsl"
 layout(binding = QL_BIND_QUEUE_OUT, scalar) writeonly buffer QueueOut { uint queueOut[]; };
 
 // The frame's estimator and guiding switches.
@@ -389,10 +390,18 @@ bool scatterAt(inout PathState st, inout Rng rng, uint path, Surface s, vec3 le,
   return alive;
 }
 
+// Fused, the camera-hit pipeline starts every pixel's path itself (no begin pass, no queue
+// 0 to read): slot i is path i.
+bool startsCameraPaths() { return kTraceInShade && kBouncePhase == kBouncePhaseCamera; }
+
 void main() {
-  uint path = queuedPath(gl_GlobalInvocationID.x);
+  uint path;
+  if (startsCameraPaths())
+    path = gl_GlobalInvocationID.x < pc.pathCount ? gl_GlobalInvocationID.x : kNoPath;
+  else
+    path = queuedPath(gl_GlobalInvocationID.x);
   if (path == kNoPath) return;
-  PathState st = loadPath(path);
+  PathState st = startsCameraPaths() ? cameraPath(path) : loadPath(path);
   if (kTraceInShade) {
     BvhHit hit;
     bool found = traceClosest(st.origin, st.dir, kInfinity, hit);

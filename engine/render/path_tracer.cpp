@@ -213,12 +213,14 @@ void PathTracer::recordFrame(gpu::PassRecorder& rec, const GpuScene& scene,
     shadeByPhase[phase] =
         &specialized("pt_shade", scene, features, shared::kBouncePhaseCamera + phase);
   const gpu::ComputePipeline& end = specialized("pt_end", scene, features);
-  // Wavefront: begin, then per bounce trace (extension rays; fused: in the shade pass) and
-  // shade (which traces its shadow rays) over the live paths only, end.
+  // Wavefront: begin, then per bounce trace (extension rays) and shade (which traces its
+  // shadow rays) over the live paths only, end. Fused, the shade pass traces the extension
+  // rays and its camera-hit pipeline starts the paths (no begin pass).
   for (uint32_t s = 0; s < settings_.samplesPerFrame; ++s) {
-    pass("path.begin", begin_, s, 0, 0)
-        .write(QL_BIND_QUEUE_OUT, *queueIds_[0])
-        .dispatchThreads(pathCount);
+    if (!fused)
+      pass("path.begin", begin_, s, 0, 0)
+          .write(QL_BIND_QUEUE_OUT, *queueIds_[0])
+          .dispatchThreads(pathCount);
     switchQueues(s, 0, true);
     for (uint32_t bounce = 0; bounce <= settings_.maxDepth; ++bounce) {
       if (bounce > 0) switchQueues(s, bounce, false);

@@ -1,5 +1,6 @@
-// The extension rays traced in the shade pass (fused) or in a trace pass of their own
-// (separate) are the same rays with the same hits: with one seed the two renders are equal
+// The extension rays traced in the shade pass, which also starts the camera paths (fused),
+// or in a trace pass of their own after a begin pass (separate) are the same rays with the
+// same hits: with one seed the two renders are equal
 // bit for bit, the counters too, guided and learning across frames or not, and on a
 // textured, skinned (a moving instance beside the merged tree) and sky-lit scene.
 #include <cstring>
@@ -38,6 +39,7 @@ TEST_P(TraceKernel, FusedAndSeparateRenderTheSameImage) {
   EXPECT_TRUE(fused.stats.traceInShade);
   EXPECT_FALSE(separate.stats.traceInShade);
   EXPECT_EQ(fused.stats.gpuMs.count("path.trace"), 0u) << "fused: no trace pass";
+  EXPECT_EQ(fused.stats.gpuMs.count("path.begin"), 0u) << "fused: the shade starts the paths";
   EXPECT_GT(separate.stats.gpuMs.count("path.trace"), 0u);
   ASSERT_EQ(fused.image.rgba.size(), separate.image.rgba.size());
   EXPECT_EQ(std::memcmp(fused.image.rgba.data(), separate.image.rgba.data(),
