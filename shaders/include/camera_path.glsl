@@ -22,6 +22,7 @@ PathState cameraPath(uint path) {
   // A pixel's ray cone: no width at the eye, one pixel's angle of spread.
   // Rounded as the state stores it (half precision): a started and a loaded path are equal.
   s.coneWidth = 0.0;
-  s.coneSpread = unpackHalf2x16(packHalf2x16(vec2(2.0 * cam.tanHalfFovY / float(frame.resolution.y), 0.0))).x;
+  float spread = 2.0 * cam.tanHalfFovY / float(frame.resolution.y);
+  s.coneSpread = unpackHalf2x16(packHalf2x16(vec2(spread, 0.0))).x;
   return s;
 }
