@@ -11,12 +11,12 @@
 layout(local_size_x = 64) in;
 layout(constant_id = 3) const bool kAnyHit = false;  // ids 0..2 are the workgroup size
 
-layout(binding = QL_BIND_BVH_NODES) uniform samplerBuffer uBvhNodes;
-layout(binding = QL_BIND_BVH_TRIS) uniform samplerBuffer uBvhTris;
-layout(binding = QL_BIND_BVH_INSTANCES) uniform samplerBuffer uBvhInstances;
-#define QL_BVH_NODE(i) texelFetch(uBvhNodes, int(i))
-#define QL_BVH_TRI(i) texelFetch(uBvhTris, int(i))
-#define QL_BVH_INST(i) texelFetch(uBvhInstances, int(i))
+layout(binding = QL_BIND_BVH_NODES, rgba32f) uniform readonly restrict imageBuffer uBvhNodes;
+layout(binding = QL_BIND_BVH_TRIS, rgba32f) uniform readonly restrict imageBuffer uBvhTris;
+layout(binding = QL_BIND_BVH_INSTANCES, rgba32f) uniform readonly restrict imageBuffer uBvhInstances;
+#define QL_BVH_NODE(i) imageLoad(uBvhNodes, int(i))
+#define QL_BVH_TRI(i) imageLoad(uBvhTris, int(i))
+#define QL_BVH_INST(i) imageLoad(uBvhInstances, int(i))
 #include "shared/bvh_traverse.h"
 
 layout(binding = QL_BIND_TRACE_RAYS) uniform samplerBuffer uRays;

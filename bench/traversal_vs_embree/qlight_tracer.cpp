@@ -12,7 +12,6 @@ namespace qlight::bench {
 namespace {
 
 using Clock = std::chrono::steady_clock;
-constexpr VkBufferUsageFlags kTexel = VK_BUFFER_USAGE_UNIFORM_TEXEL_BUFFER_BIT;
 
 double msSince(Clock::time_point start) {
   return std::chrono::duration<double, std::milli>(Clock::now() - start).count();
@@ -20,8 +19,8 @@ double msSince(Clock::time_point start) {
 
 std::unique_ptr<gpu::Buffer> upload(const gpu::Context& ctx, const std::vector<glm::vec4>& texels,
                                     const std::string& name) {
-  auto b =
-      std::make_unique<gpu::Buffer>(ctx, std::max<size_t>(texels.size(), 1) * 16, name, kTexel);
+  auto b = std::make_unique<gpu::Buffer>(ctx, std::max<size_t>(texels.size(), 1) * 16, name,
+                                         gpu::kTexelTableUsage);
   if (!texels.empty()) b->upload(ctx, texels.data(), texels.size() * 16);
   return b;
 }
@@ -34,7 +33,8 @@ std::vector<uint32_t> query(bool anyHit) { return {0, 0, 0, anyHit ? 1u : 0u}; }
 DeviceRays::DeviceRays(const gpu::Context& ctx, const RaySet& set)
     : count_(uint32_t(set.rays.size())), anyHit_(set.anyHit) {
   size_t bytes = std::max<size_t>(set.rays.size(), 1) * sizeof(TraceRay);
-  rayBuffer_ = std::make_unique<gpu::Buffer>(ctx, bytes, "trace.rays." + set.kind, kTexel);
+  rayBuffer_ =
+      std::make_unique<gpu::Buffer>(ctx, bytes, "trace.rays." + set.kind, gpu::kTexelTableUsage);
   if (!set.rays.empty())
     rayBuffer_->upload(ctx, set.rays.data(), set.rays.size() * sizeof(TraceRay));
   hitBuffer_ = std::make_unique<gpu::Buffer>(ctx, std::max<size_t>(count_, 1) * sizeof(TraceHit),

@@ -15,6 +15,12 @@ enum class MemoryUse {
   HostVisible,  // mapped, coherent: staging, readback, per-frame constants
 };
 
+// Usage of a table the shaders read through a texel view: declared as a read-only
+// imageBuffer and read with imageLoad (on lavapipe 7-10% faster traversal than texelFetch on
+// a samplerBuffer, docs/performance_log.md), or as a samplerBuffer where its format varies.
+constexpr VkBufferUsageFlags kTexelTableUsage =
+    VK_BUFFER_USAGE_UNIFORM_TEXEL_BUFFER_BIT | VK_BUFFER_USAGE_STORAGE_TEXEL_BUFFER_BIT;
+
 class Buffer {
  public:
   Buffer() = default;
@@ -50,8 +56,8 @@ class Buffer {
   std::string name_;
 };
 
-// A typed view for texelFetch on samplerBuffer/usamplerBuffer: on lavapipe texel
-// loads vectorize where storage-buffer loads become per-lane loops.
+// A typed view for imageLoad on imageBuffer or texelFetch on samplerBuffer: on lavapipe
+// texel loads vectorize where storage-buffer loads become per-lane loops.
 class BufferView {
  public:
   BufferView() = default;

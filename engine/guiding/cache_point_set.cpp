@@ -11,8 +11,6 @@ uint32_t nextPowerOfTwo(uint32_t v) {
   return p;
 }
 
-constexpr VkBufferUsageFlags kTexel = VK_BUFFER_USAGE_UNIFORM_TEXEL_BUFFER_BIT;
-
 }  // namespace
 
 CachePointSet::CachePointSet(const gpu::Context& ctx, uint32_t budget, float searchRadius)
@@ -21,11 +19,12 @@ CachePointSet::CachePointSet(const gpu::Context& ctx, uint32_t budget, float sea
   grid_.hashSize = nextPowerOfTwo(std::max<uint32_t>(2 * budget, 1024));
   grid_.buckets.assign(grid_.hashSize + 1, 0);
   points_ = std::make_unique<gpu::Buffer>(
-      ctx, std::max<uint64_t>(uint64_t(budget) * sizeof(CachePoint), 16), "guiding.points", kTexel);
+      ctx, std::max<uint64_t>(uint64_t(budget) * sizeof(CachePoint), 16), "guiding.points",
+      gpu::kTexelTableUsage);
   buckets_ = std::make_unique<gpu::Buffer>(ctx, (grid_.hashSize + 1ull) * 4, "guiding.gridBuckets",
-                                           kTexel);
+                                           gpu::kTexelTableUsage);
   gridPoints_ = std::make_unique<gpu::Buffer>(ctx, std::max<uint64_t>(uint64_t(budget) * 4, 16),
-                                              "guiding.gridPoints", kTexel);
+                                              "guiding.gridPoints", gpu::kTexelTableUsage);
   pointsView_ = std::make_unique<gpu::BufferView>(ctx, *points_, VK_FORMAT_R32G32B32A32_SFLOAT);
   bucketsView_ = std::make_unique<gpu::BufferView>(ctx, *buckets_, VK_FORMAT_R32_UINT);
   gridPointsView_ = std::make_unique<gpu::BufferView>(ctx, *gridPoints_, VK_FORMAT_R32_UINT);
@@ -126,7 +125,7 @@ void CachePointSet::uploadGrid(ecs::Registry& registry) {
   if (grid_.points.size() * 4 > gridPoints_->size()) {  // points are listed in several cells
     gridPointsView_.reset();
     gridPoints_ = std::make_unique<gpu::Buffer>(ctx_, grid_.points.size() * 4 * 5 / 4,
-                                                "guiding.gridPoints", kTexel);
+                                                "guiding.gridPoints", gpu::kTexelTableUsage);
     gridPointsView_ = std::make_unique<gpu::BufferView>(ctx_, *gridPoints_, VK_FORMAT_R32_UINT);
   }
   if (!grid_.points.empty())

@@ -53,7 +53,7 @@ DqnGuide::DqnGuide(const gpu::Context& ctx, const GuidingSettings& settings,
       guidingUniforms_(ctx, sizeof(shared::GuidingUniforms), "dqn.guiding", 0,
                        gpu::MemoryUse::HostVisible),
       online_(ctx, parameters_ * 4ull, "dqn.online"),
-      target_(ctx, parameters_ * 4ull, "dqn.target", VK_BUFFER_USAGE_UNIFORM_TEXEL_BUFFER_BIT),
+      target_(ctx, parameters_ * 4ull, "dqn.target", gpu::kTexelTableUsage),
       moments_(ctx, parameters_ * 8ull, "dqn.adam"),
       gradient_(ctx, parameters_ * 4ull, "dqn.gradient"),
       scratch_(ctx, uint64_t(settings.dqnBatch) * shared::dqnScratchStride(shape_) * 4ull,
@@ -72,7 +72,7 @@ DqnGuide::DqnGuide(const gpu::Context& ctx, const GuidingSettings& settings,
   if (settings.dqnGrid > 0) {
     const uint64_t rows = shared::dqnGridRows(settings.dqnGrid);
     gridRows_ = std::make_unique<gpu::Buffer>(ctx, rows * shape_.outputs * 4ull, "dqn.grid",
-                                              VK_BUFFER_USAGE_UNIFORM_TEXEL_BUFFER_BIT);
+                                              gpu::kTexelTableUsage);
     gridView_ = std::make_unique<gpu::BufferView>(ctx, *gridRows_, VK_FORMAT_R32_SFLOAT);
   }
   uploadWeights(initialWeights(shape_, settings.seed));

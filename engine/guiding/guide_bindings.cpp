@@ -29,8 +29,7 @@ GuidePlaceholders::GuidePlaceholders(const gpu::Context& ctx) {
   off.hashSize = 1;
   uniforms_ = std::make_unique<gpu::Buffer>(ctx, sizeof(off), "guiding.off");
   uniforms_->upload(ctx, &off, sizeof(off));
-  empty_ = std::make_unique<gpu::Buffer>(ctx, 64, "guiding.empty",
-                                         VK_BUFFER_USAGE_UNIFORM_TEXEL_BUFFER_BIT);
+  empty_ = std::make_unique<gpu::Buffer>(ctx, 64, "guiding.empty", gpu::kTexelTableUsage);
   std::vector<uint8_t> zeros(64, 0);
   empty_->upload(ctx, zeros.data(), zeros.size());
   emptyFloats_ = std::make_unique<gpu::BufferView>(ctx, *empty_, VK_FORMAT_R32_SFLOAT);

@@ -27,7 +27,7 @@ uint32_t floatBits(float f) {
 std::unique_ptr<gpu::Buffer> makeTableBuffer(const gpu::Context& ctx, uint64_t bytes,
                                              const std::string& name) {
   return std::make_unique<gpu::Buffer>(ctx, std::max<uint64_t>(bytes, 16), name,
-                                       VK_BUFFER_USAGE_UNIFORM_TEXEL_BUFFER_BIT);
+                                       gpu::kTexelTableUsage);
 }
 
 }  // namespace

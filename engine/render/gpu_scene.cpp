@@ -119,9 +119,8 @@ void GpuScene::uploadEnvironment() {
     tables.texels.assign(shared::kEnvironmentHeaderTexels, glm::vec4(0.0f));  // never read
     tables.cdf.assign(1, 0.0f);
   }
-  constexpr VkBufferUsageFlags texel = VK_BUFFER_USAGE_UNIFORM_TEXEL_BUFFER_BIT;
-  envTexels_ = makeBuffer(ctx_, tables.texels, "scene.environmentTexels", texel);
-  envCdf_ = makeBuffer(ctx_, tables.cdf, "scene.environmentCdf", texel);
+  envTexels_ = makeBuffer(ctx_, tables.texels, "scene.environmentTexels", gpu::kTexelTableUsage);
+  envCdf_ = makeBuffer(ctx_, tables.cdf, "scene.environmentCdf", gpu::kTexelTableUsage);
   envTexelsView_ =
       std::make_unique<gpu::BufferView>(ctx_, *envTexels_, VK_FORMAT_R32G32B32A32_SFLOAT);
   envCdfView_ = std::make_unique<gpu::BufferView>(ctx_, *envCdf_, VK_FORMAT_R32_SFLOAT);
@@ -202,16 +201,15 @@ void GpuScene::uploadStatic() {
   if (texels.empty()) texels.push_back(0xffffffffu);
   if (textures.empty()) textures.push_back({0, 1, 1, 0});
 
-  constexpr VkBufferUsageFlags texel = VK_BUFFER_USAGE_UNIFORM_TEXEL_BUFFER_BIT;
-  vertices_ = makeBuffer(ctx_, vertices.texels, "scene.vertices", texel);
-  materials_ = makeBuffer(ctx_, materials, "scene.materials", texel);
+  vertices_ = makeBuffer(ctx_, vertices.texels, "scene.vertices", gpu::kTexelTableUsage);
+  materials_ = makeBuffer(ctx_, materials, "scene.materials", gpu::kTexelTableUsage);
   verticesView_ =
       std::make_unique<gpu::BufferView>(ctx_, *vertices_, VK_FORMAT_R32G32B32A32_SFLOAT);
   materialsView_ =
       std::make_unique<gpu::BufferView>(ctx_, *materials_, VK_FORMAT_R32G32B32A32_SFLOAT);
-  textures_ = makeBuffer(ctx_, textures, "scene.textures", texel);
+  textures_ = makeBuffer(ctx_, textures, "scene.textures", gpu::kTexelTableUsage);
   texturesView_ = std::make_unique<gpu::BufferView>(ctx_, *textures_, VK_FORMAT_R32G32B32A32_UINT);
-  texels_ = makeBuffer(ctx_, texels, "scene.texels", VK_BUFFER_USAGE_UNIFORM_TEXEL_BUFFER_BIT);
+  texels_ = makeBuffer(ctx_, texels, "scene.texels", gpu::kTexelTableUsage);
   texelView_ = std::make_unique<gpu::BufferView>(ctx_, *texels_, VK_FORMAT_R32_UINT);
 }
 
@@ -294,14 +292,13 @@ void GpuScene::uploadLights(const SceneDraw& draw) {
   for (const GpuLight& l : lights_) cdf.push_back(running += l.power);
   if (cdf.empty()) cdf.push_back(0.0f);
 
-  constexpr VkBufferUsageFlags texel = VK_BUFFER_USAGE_UNIFORM_TEXEL_BUFFER_BIT;
   lightCdfView_.reset();
   triangleView_.reset();
   lightView_.reset();
-  lightBuffer_ = makeBuffer(ctx_, lights_, "scene.lights", texel);
+  lightBuffer_ = makeBuffer(ctx_, lights_, "scene.lights", gpu::kTexelTableUsage);
   lightView_ = std::make_unique<gpu::BufferView>(ctx_, *lightBuffer_, VK_FORMAT_R32G32B32A32_UINT);
-  lightCdf_ = makeBuffer(ctx_, cdf, "scene.lightCdf", texel);
-  triangleBuffer_ = makeBuffer(ctx_, triangles_, "scene.triangles", texel);
+  lightCdf_ = makeBuffer(ctx_, cdf, "scene.lightCdf", gpu::kTexelTableUsage);
+  triangleBuffer_ = makeBuffer(ctx_, triangles_, "scene.triangles", gpu::kTexelTableUsage);
   lightCdfView_ = std::make_unique<gpu::BufferView>(ctx_, *lightCdf_, VK_FORMAT_R32_SFLOAT);
   triangleView_ =
       std::make_unique<gpu::BufferView>(ctx_, *triangleBuffer_, VK_FORMAT_R32G32B32A32_UINT);
@@ -366,22 +363,21 @@ void GpuScene::update(const SceneDraw& draw) {
     inst.mesh = d.mesh;
     instances.push_back(inst);
   }
-  constexpr VkBufferUsageFlags texel = VK_BUFFER_USAGE_UNIFORM_TEXEL_BUFFER_BIT;
   instancesView_.reset();
-  instances_ = makeBuffer(ctx_, instances, "scene.instances", texel);
+  instances_ = makeBuffer(ctx_, instances, "scene.instances", gpu::kTexelTableUsage);
   instancesView_ =
       std::make_unique<gpu::BufferView>(ctx_, *instances_, VK_FORMAT_R32G32B32A32_UINT);
   bvhNodesView_.reset();
   bvhInstancesView_.reset();
-  bvhNodes_ = makeBuffer(ctx_, accel_.nodeTexels(), "bvh.nodes", texel);
-  bvhInstances_ = makeBuffer(ctx_, accel_.instanceTexels(), "bvh.instances", texel);
+  bvhNodes_ = makeBuffer(ctx_, accel_.nodeTexels(), "bvh.nodes", gpu::kTexelTableUsage);
+  bvhInstances_ = makeBuffer(ctx_, accel_.instanceTexels(), "bvh.instances", gpu::kTexelTableUsage);
   bvhNodesView_ =
       std::make_unique<gpu::BufferView>(ctx_, *bvhNodes_, VK_FORMAT_R32G32B32A32_SFLOAT);
   bvhInstancesView_ =
       std::make_unique<gpu::BufferView>(ctx_, *bvhInstances_, VK_FORMAT_R32G32B32A32_SFLOAT);
   if (trianglesMoved) {  // rigid motion of unmerged instances leaves the triangles as they are
     bvhTrisView_.reset();
-    bvhTris_ = makeBuffer(ctx_, accel_.triangleTexels(), "bvh.triangles", texel);
+    bvhTris_ = makeBuffer(ctx_, accel_.triangleTexels(), "bvh.triangles", gpu::kTexelTableUsage);
     bvhTrisView_ =
         std::make_unique<gpu::BufferView>(ctx_, *bvhTris_, VK_FORMAT_R32G32B32A32_SFLOAT);
   }

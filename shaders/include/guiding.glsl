@@ -3,11 +3,12 @@
 // Q-learning targets it accumulates for the update pass (D&K eq. 5).
 
 layout(binding = QL_BIND_GUIDING, scalar) uniform Guiding { GuidingUniforms guiding; };
-// Read-only tables are texel buffers: on lavapipe a texel fetch loads all
-// lanes at once where a storage-buffer load loops over them.
-layout(binding = QL_BIND_CACHE_POINTS) uniform samplerBuffer uCachePoints;  // 2 texels a point
-layout(binding = QL_BIND_GRID_BUCKETS) uniform usamplerBuffer uGridBuckets;
-layout(binding = QL_BIND_GRID_POINTS) uniform usamplerBuffer uGridPoints;
+// Read-only tables are texel buffers (read with imageLoad, as in scene_access.glsl); the Q
+// and V CDFs stay samplerBuffers, whose view format varies (R32 for strata, RGBA32 for trees
+// and deep Q), where an imageBuffer's format is fixed in the shader.
+layout(binding = QL_BIND_CACHE_POINTS, rgba32f) uniform readonly restrict imageBuffer uCachePoints;  // 2 texels a point
+layout(binding = QL_BIND_GRID_BUCKETS, r32ui) uniform readonly restrict uimageBuffer uGridBuckets;
+layout(binding = QL_BIND_GRID_POINTS, r32ui) uniform readonly restrict uimageBuffer uGridPoints;
 layout(binding = QL_BIND_Q_CDF) uniform samplerBuffer uQCdf;
 // Q's target sums, one 64-bit fixed-point word an entry (one atomic a target); deep Q reads
 // the same binding as 32-bit words (its replay records).
@@ -18,10 +19,10 @@ layout(binding = QL_BIND_SPAWN, scalar) buffer Spawn { vec4 spawnEntries[]; };  
 layout(binding = QL_BIND_V_CDF) uniform samplerBuffer uVCdf;
 layout(binding = QL_BIND_V_SUM, scalar) buffer VSum64 { uint64_t vSum64[]; };  // fixed point
 layout(binding = QL_BIND_V_COUNT, scalar) buffer VCount { uint vCount[]; };
-layout(binding = QL_BIND_POINT_UPDATES) uniform usamplerBuffer uPointUpdates;
+layout(binding = QL_BIND_POINT_UPDATES, r32ui) uniform readonly restrict uimageBuffer uPointUpdates;
 // Direction trees (kGuideTree): QL_BIND_Q_CDF holds the slots' weights (4 a texel, one texel a
 // node), this the slots' children.
-layout(binding = QL_BIND_Q_CHILDREN) uniform usamplerBuffer uQChildren;
+layout(binding = QL_BIND_Q_CHILDREN, rgba32ui) uniform readonly restrict uimageBuffer uQChildren;
 // Learned NEE probability: kNeeWordsPerPoint words a point (shared/guiding_types.h).
 layout(binding = QL_BIND_NEE_COUNTS, scalar) buffer NeeCounts { uint neeCounts[]; };
 // Deep Q (kUseDqn) binds the tables' slots to its own buffers: QL_BIND_Q_CDF holds the
@@ -37,8 +38,8 @@ layout(binding = QL_BIND_NEE_COUNTS, scalar) buffer NeeCounts { uint neeCounts[]
 bool dqnPerVertex() { return kUseDqn && kDqnGrid == 0u; }
 
 GpuCachePoint cachePointAt(uint i) {
-  vec4 a = texelFetch(uCachePoints, int(2u * i));
-  vec4 b = texelFetch(uCachePoints, int(2u * i + 1u));
+  vec4 a = imageLoad(uCachePoints, int(2u * i));
+  vec4 b = imageLoad(uCachePoints, int(2u * i + 1u));
   GpuCachePoint p;
   p.position = a.xyz;
   p.radius = a.w;
@@ -53,7 +54,7 @@ float vCdf(uint i) { return texelFetch(uVCdf, int(i)).x; }
 #include "shared/strata.h"
 
 #define QL_TREE_WEIGHTS(node) texelFetch(uQCdf, int(node))
-#define QL_TREE_CHILDREN(node) texelFetch(uQChildren, int(node))
+#define QL_TREE_CHILDREN(node) imageLoad(uQChildren, int(node))
 #include "shared/direction_tree.h"
 
 uint strataCount() { return guiding.rows * guiding.cols; }
@@ -61,14 +62,14 @@ bool treeDirections() { return kUseDirectionTrees && (guiding.flags & kGuideTree
 
 float pointConfidence(uint point) {
   if (kUseDqn) return guiding.dqn.confidence;  // the network's, from its training steps
-  return confidenceOf(texelFetch(uPointUpdates, int(point)).x, guiding.confidenceUpdates,
+  return confidenceOf(imageLoad(uPointUpdates, int(point)).x, guiding.confidenceUpdates,
                       strataCount());
 }
 
 
 #define QL_POINT_AT(i) cachePointAt(i)
-#define QL_GRID_BUCKET_AT(h) texelFetch(uGridBuckets, int(h)).x
-#define QL_GRID_POINT_AT(j) texelFetch(uGridPoints, int(j)).x
+#define QL_GRID_BUCKET_AT(h) imageLoad(uGridBuckets, int(h)).x
+#define QL_GRID_POINT_AT(j) imageLoad(uGridPoints, int(j)).x
 #include "shared/point_search.h"
 
 // With deep Q every vertex is its own state: point 0 stands for "the vertex itself".

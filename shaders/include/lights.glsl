@@ -1,13 +1,13 @@
 // Light selection (by power, from an inclusive CDF) and light sampling for
 // next event estimation, plus the pdf of hitting a light by a scattered ray.
-layout(binding = QL_BIND_LIGHTS) uniform usamplerBuffer uLights;  // kLightTexels each
+layout(binding = QL_BIND_LIGHTS, rgba32ui) uniform readonly restrict uimageBuffer uLights;  // kLightTexels each
 
 // Light i (a texel buffer for the reason in scene_access.glsl); unused fields are not fetched.
 GpuLight lightAt(uint i) {
   int at = int(kLightTexels * i);
-  uvec4 a = texelFetch(uLights, at), b = texelFetch(uLights, at + 1),
-        c = texelFetch(uLights, at + 2), d = texelFetch(uLights, at + 3),
-        e = texelFetch(uLights, at + 4);
+  uvec4 a = imageLoad(uLights, at), b = imageLoad(uLights, at + 1),
+        c = imageLoad(uLights, at + 2), d = imageLoad(uLights, at + 3),
+        e = imageLoad(uLights, at + 4);
   GpuLight l;
   l.position = uintBitsToFloat(a.xyz);
   l.type = a.w;
@@ -23,12 +23,12 @@ GpuLight lightAt(uint i) {
   l.power = uintBitsToFloat(e.w);
   return l;
 }
-layout(binding = QL_BIND_LIGHT_CDF) uniform samplerBuffer uLightCdf;
-float lightCdfAt(uint i) { return texelFetch(uLightCdf, int(i)).x; }
-layout(binding = QL_BIND_ENV_TEXELS) uniform samplerBuffer uEnvTexels;
-layout(binding = QL_BIND_ENV_CDF) uniform samplerBuffer uEnvCdf;
-#define QL_ENV_TEXEL_AT(i) texelFetch(uEnvTexels, int(i))
-#define QL_ENV_CDF_AT(i) texelFetch(uEnvCdf, int(i)).x
+layout(binding = QL_BIND_LIGHT_CDF, r32f) uniform readonly restrict imageBuffer uLightCdf;
+float lightCdfAt(uint i) { return imageLoad(uLightCdf, int(i)).x; }
+layout(binding = QL_BIND_ENV_TEXELS, rgba32f) uniform readonly restrict imageBuffer uEnvTexels;
+layout(binding = QL_BIND_ENV_CDF, r32f) uniform readonly restrict imageBuffer uEnvCdf;
+#define QL_ENV_TEXEL_AT(i) imageLoad(uEnvTexels, int(i))
+#define QL_ENV_CDF_AT(i) imageLoad(uEnvCdf, int(i)).x
 #include "shared/environment.h"
 
 struct LightSample {

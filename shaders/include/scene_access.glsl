@@ -4,32 +4,34 @@
 #include "shared/random.h"
 #include "shared/bvh_types.h"
 
-layout(binding = QL_BIND_BVH_NODES) uniform samplerBuffer uBvhNodes;
-layout(binding = QL_BIND_BVH_TRIS) uniform samplerBuffer uBvhTris;
-layout(binding = QL_BIND_BVH_INSTANCES) uniform samplerBuffer uBvhInstances;
-#define QL_BVH_NODE(i) texelFetch(uBvhNodes, int(i))
-#define QL_BVH_TRI(i) texelFetch(uBvhTris, int(i))
-#define QL_BVH_INST(i) texelFetch(uBvhInstances, int(i))
+layout(binding = QL_BIND_BVH_NODES, rgba32f) uniform readonly restrict imageBuffer uBvhNodes;
+layout(binding = QL_BIND_BVH_TRIS, rgba32f) uniform readonly restrict imageBuffer uBvhTris;
+layout(binding = QL_BIND_BVH_INSTANCES, rgba32f) uniform readonly restrict imageBuffer uBvhInstances;
+#define QL_BVH_NODE(i) imageLoad(uBvhNodes, int(i))
+#define QL_BVH_TRI(i) imageLoad(uBvhTris, int(i))
+#define QL_BVH_INST(i) imageLoad(uBvhInstances, int(i))
 
-layout(binding = QL_BIND_TRIANGLES) uniform usamplerBuffer uTriangles;  // 2 texels each
-layout(binding = QL_BIND_VERTICES) uniform samplerBuffer uVertices;     // 2 texels each
-// Tables read at per-lane indices are texel buffers: on lavapipe a texel fetch loads all lanes
-// at once where a storage-buffer load loops over the lanes for each 32-bit word. Integer
-// views, so the uint fields' bits come back as stored on any GPU.
-layout(binding = QL_BIND_INSTANCES) uniform usamplerBuffer uInstances;  // kInstanceTexels each
-layout(binding = QL_BIND_MATERIALS) uniform samplerBuffer uMaterials;   // 4 texels each
-layout(binding = QL_BIND_TEXTURES) uniform usamplerBuffer uTextures;    // 1 texel each
-layout(binding = QL_BIND_TEXELS) uniform usamplerBuffer uTexels;
+layout(binding = QL_BIND_TRIANGLES, rgba32ui) uniform readonly restrict uimageBuffer uTriangles;  // 2 texels each
+layout(binding = QL_BIND_VERTICES, rgba32f) uniform readonly restrict imageBuffer uVertices;     // 2 texels each
+// Tables read at per-lane indices are texel buffers: on lavapipe a texel load fetches all
+// lanes at once where a storage-buffer load loops over the lanes for each 32-bit word, and
+// imageLoad on a read-only imageBuffer beats texelFetch on a samplerBuffer (7-10% faster
+// traversal, docs/performance_log.md). Integer views, so the uint fields' bits come back as
+// stored on any GPU.
+layout(binding = QL_BIND_INSTANCES, rgba32ui) uniform readonly restrict uimageBuffer uInstances;  // kInstanceTexels each
+layout(binding = QL_BIND_MATERIALS, rgba32f) uniform readonly restrict imageBuffer uMaterials;   // 4 texels each
+layout(binding = QL_BIND_TEXTURES, rgba32ui) uniform readonly restrict uimageBuffer uTextures;    // 1 texel each
+layout(binding = QL_BIND_TEXELS, r32ui) uniform readonly restrict uimageBuffer uTexels;
 
 // Only the fields a caller uses are fetched: the compiler drops the others' texels.
 GpuInstance instanceAt(uint i) {
   int at = int(kInstanceTexels * i);
   GpuInstance inst;
   for (int r = 0; r < 3; ++r) {
-    inst.normalFromObject[r] = uintBitsToFloat(texelFetch(uInstances, at + r));
-    inst.tangentFromObject[r] = uintBitsToFloat(texelFetch(uInstances, at + 3 + r));
+    inst.normalFromObject[r] = uintBitsToFloat(imageLoad(uInstances, at + r));
+    inst.tangentFromObject[r] = uintBitsToFloat(imageLoad(uInstances, at + 3 + r));
   }
-  uvec4 info = texelFetch(uInstances, at + 6);
+  uvec4 info = imageLoad(uInstances, at + 6);
   inst.firstTriangle = info.x;
   inst.mesh = info.y;
   inst.worldScale = uintBitsToFloat(info.z);
@@ -38,17 +40,17 @@ GpuInstance instanceAt(uint i) {
 }
 
 uint instanceFirstTriangle(uint i) {
-  return texelFetch(uInstances, int(kInstanceTexels * i + 6u)).x;
+  return imageLoad(uInstances, int(kInstanceTexels * i + 6u)).x;
 }
 
 GpuTexture textureAt(uint i) {
-  uvec4 t = texelFetch(uTextures, int(i));
+  uvec4 t = imageLoad(uTextures, int(i));
   return GpuTexture(t.x, t.y, t.z, t.w);
 }
 
 GpuTriangle triangleAt(uint i) {
-  uvec4 a = texelFetch(uTriangles, int(2u * i));
-  uvec4 b = texelFetch(uTriangles, int(2u * i + 1u));
+  uvec4 a = imageLoad(uTriangles, int(2u * i));
+  uvec4 b = imageLoad(uTriangles, int(2u * i + 1u));
   GpuTriangle t;
   t.v0 = a.x;
   t.v1 = a.y;
@@ -61,8 +63,8 @@ GpuTriangle triangleAt(uint i) {
 }
 
 GpuVertex vertexAt(uint i) {
-  vec4 a = texelFetch(uVertices, int(2u * i));
-  vec4 b = texelFetch(uVertices, int(2u * i + 1u));
+  vec4 a = imageLoad(uVertices, int(2u * i));
+  vec4 b = imageLoad(uVertices, int(2u * i + 1u));
   GpuVertex v;
   v.position = a.xyz;
   v.u = a.w;
@@ -74,23 +76,23 @@ GpuVertex vertexAt(uint i) {
 GpuVertexExtras vertexExtrasAt(uint extrasTexel, uint i) {
   int at = int(extrasTexel + kVertexExtrasTexels * i);
   GpuVertexExtras e;
-  e.tangent = texelFetch(uVertices, at);
-  e.color = texelFetch(uVertices, at + 1);
-  e.uv1 = texelFetch(uVertices, at + 2).xy;
+  e.tangent = imageLoad(uVertices, at);
+  e.color = imageLoad(uVertices, at + 1);
+  e.uv1 = imageLoad(uVertices, at + 2).xy;
   e.pad = vec2(0.0);
   return e;
 }
 
 vec2 vertexUv(uint i) {
-  return vec2(texelFetch(uVertices, int(2u * i)).w, texelFetch(uVertices, int(2u * i + 1u)).w);
+  return vec2(imageLoad(uVertices, int(2u * i)).w, imageLoad(uVertices, int(2u * i + 1u)).w);
 }
 
 // The factors only; a texture slot's view is read by textureViewAt when it is used.
 GpuMaterial materialAt(uint i) {
   int at = int(kMaterialTexels * i);
-  vec4 a = texelFetch(uMaterials, at);
-  vec4 b = texelFetch(uMaterials, at + 1);
-  vec4 c = texelFetch(uMaterials, at + 2);
+  vec4 a = imageLoad(uMaterials, at);
+  vec4 b = imageLoad(uMaterials, at + 1);
+  vec4 c = imageLoad(uMaterials, at + 2);
   GpuMaterial m;
   m.baseColor = a;
   m.emissive = b.xyz;
@@ -99,7 +101,7 @@ GpuMaterial materialAt(uint i) {
   m.specular = c.y;
   m.flags = c.z;
   m.normalScale = c.w;
-  vec4 d = texelFetch(uMaterials, at + 3);
+  vec4 d = imageLoad(uMaterials, at + 3);
   m.alphaCutoff = d.x;
   m.transmission = d.y;
   m.ior = d.z;
@@ -110,8 +112,8 @@ GpuMaterial materialAt(uint i) {
 GpuTextureView textureViewAt(uint material, uint slot) {
   int at = int(kMaterialTexels * material + kMaterialFactorTexels + 2u * slot);
   GpuTextureView v;
-  v.uRow = texelFetch(uMaterials, at);
-  v.vRow = texelFetch(uMaterials, at + 1);
+  v.uRow = imageLoad(uMaterials, at);
+  v.vRow = imageLoad(uMaterials, at + 1);
   return v;
 }
 
@@ -142,7 +144,7 @@ vec4 texel(GpuTexture t, int x, int y) {
   if ((t.flags & kTextureClampT) != 0u) y = clamp(y, 0, int(t.height) - 1);
   else if ((t.flags & kTextureMirrorT) != 0u) { int p = int(2u * t.height); y = ((y % p) + p) % p; if (y >= int(t.height)) y = p - 1 - y; }
   else y = ((y % int(t.height)) + int(t.height)) % int(t.height);
-  vec4 c = unpackUnorm4x8(texelFetch(uTexels, int(t.offset + uint(y) * t.width + uint(x))).r);
+  vec4 c = unpackUnorm4x8(imageLoad(uTexels, int(t.offset + uint(y) * t.width + uint(x))).r);
   if ((t.flags & kTextureSrgb) != 0u)
     c.rgb = vec3(srgbToLinear(c.r), srgbToLinear(c.g), srgbToLinear(c.b));
   return c;

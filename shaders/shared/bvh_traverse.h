@@ -1,7 +1,7 @@
 // Two-level BVH traversal shared by GLSL and C++ (the C++ tests run this very
 // code). Layout: bvh_types.h. The includer defines how texels are read:
 //   QL_BVH_NODE(i), QL_BVH_TRI(i), QL_BVH_INST(i) -> vec4 texel i
-// GLSL:  #define QL_BVH_NODE(i) texelFetch(uBvhNodes, int(i))   (samplerBuffer)
+// GLSL:  #define QL_BVH_NODE(i) imageLoad(uBvhNodes, int(i))   (readonly imageBuffer)
 // C++:   engine/bvh/cpu_traversal.h
 //
 // traceClosest / traceAny take a world-space ray (direction need not be unit
