@@ -57,14 +57,15 @@ int runHeadless(const DemoArgs& a, const CommonOptions& common) {
   const DemoTimeline timeline(a, renderer.world().camera(), asset.bounds.radius());
   const uint32_t frameCount = timeline.frames();
 
-  // The PNG frames through the window's display filter, when asked (--denoise or
-  // --reuse-history given): the accumulation, stats.json and the timings stay unfiltered.
+  // The PNG frames through the window's display filter, as the window shows them (both parts on
+  // by default; --denoise off --reuse-history off writes the traced image): the accumulation,
+  // stats.json and the timings stay unfiltered.
   std::optional<ui::DisplayFilter> filter;
   ui::DisplayFilterSettings filterSettings;
   filterSettings.reuseHistory = a.reuseHistory;
   filterSettings.denoise = a.denoise;
   filterSettings.maxLuminance = 4.0f / std::max(s.exposure, 1e-6f);
-  if (a.filterHeadless && filterSettings.active()) filter.emplace(*ctx);
+  if (filterSettings.active()) filter.emplace(*ctx);
   auto shownImage = [&]() { return filter ? filter->readOutput() : renderer.tracer().readImage(); };
 
   fs::create_directories(a.outDir);
@@ -184,12 +185,12 @@ std::function<int()> addDemoCommand(CLI::App& app, const CommonOptions& common) 
   cmd->add_flag("--show-cache-points", args->showCachePoints,
                 "window: draw the cache points over the image from the start (panel: Guiding)");
   cmd->add_option("--reuse-history", args->reuseHistory,
-                  "window: reproject the last frame while the camera moves, on|off (display "
-                  "only; headless: given, the PNG frames go through it)")
+                  "reproject the last frame while the camera moves, on|off (display only: "
+                  "the window and the headless PNG frames)")
       ->transform(CLI::CheckedTransformer(onOffWords(), CLI::ignore_case));
   cmd->add_option("--denoise", args->denoise,
-                  "window: edge-aware a-trous denoiser, on|off (display only; headless: given, "
-                  "the PNG frames go through it)")
+                  "edge-aware a-trous denoiser, on|off (display only: the window and the "
+                  "headless PNG frames)")
       ->transform(CLI::CheckedTransformer(onOffWords(), CLI::ignore_case));
   cmd->add_option("--inspect-at", args->inspectAt,
                   "window: show the learned Q at this window pixel X Y instead of the cursor's")
@@ -221,7 +222,6 @@ std::function<int()> addDemoCommand(CLI::App& app, const CommonOptions& common) 
     finishEnvironmentOptions(*cmd, args->skyText, args->environment);
     finishGuidingOptions(args->guidingCli, args->guiding, args->settings);
     for (const std::string& step : *script) args->script.push_back(parseScriptStep(step));
-    args->filterHeadless = cmd->count("--denoise") > 0 || cmd->count("--reuse-history") > 0;
     // A bad path file is one error line before any device or window starts.
     if (!args->cameraPathFile.empty()) {
       args->cameraPath = loadCameraPath(args->cameraPathFile);

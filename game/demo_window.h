@@ -44,7 +44,6 @@ struct DemoArgs {
   bool showCachePoints = false;     // the cache points overlay from the start
   bool reuseHistory = true;         // display: reproject the last frame while moving
   bool denoise = true;              // display: the a-trous denoiser
-  bool filterHeadless = false;      // headless: PNG frames through the display filter (asked for)
   std::vector<float> inspectAt;     // window pixel whose Q is shown instead of the cursor's
 };
 
