@@ -197,7 +197,9 @@ std::function<int()> addDemoCommand(CLI::App& app, const CommonOptions& common) 
       ->expected(2)
       ->check(finiteRange(0.0, 1e5));
   cmd->add_option("--scripted-move-frames", args->scriptedMoveFrames,
-                  "window: fly forward for the first N frames, then stay still")
+                  "window: fly forward and back (8 frames each way, turning) for the first N "
+                  "frames, then stay "
+                  "still")
       ->check(CLI::Range(0, 1000000));
   auto script = std::make_shared<std::vector<std::string>>();
   cmd->add_option("--script", *script,
