@@ -198,8 +198,7 @@ std::function<int()> addDemoCommand(CLI::App& app, const CommonOptions& common) 
       ->check(finiteRange(0.0, 1e5));
   cmd->add_option("--scripted-move-frames", args->scriptedMoveFrames,
                   "window: fly forward and back (8 frames each way, turning) for the first N "
-                  "frames, then stay "
-                  "still")
+                  "frames, then stay still")
       ->check(CLI::Range(0, 1000000));
   auto script = std::make_shared<std::vector<std::string>>();
   cmd->add_option("--script", *script,

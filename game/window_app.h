@@ -71,7 +71,7 @@ class WindowApp {
   float renderScale_;              // the user's: the size a still camera accumulates at
   DynamicResolution dynamic_;      // the size while the camera moves
   float lowestScale_;              // the smallest the dynamic resolution went, for the exit line
-  static constexpr uint32_t kStartupFrames = 2;
+  static constexpr uint32_t kStartupFrames = 2;  // left out of the moving figure
   double movingSeconds_ = 0;  // frame time spent while the camera moved, and the frames
   uint32_t movingFrames_ = 0;
   session::Renderer renderer_;  // the frame: scene entities, cache points, tracer, guide

@@ -9,13 +9,9 @@
 #include "shared/bsdf.h"
 #include "shared/tonemap.h"
 #include "include/scene_access.glsl"
-#include "../engine/ui/display_filter_types.h"
+#include "include/filter_uniforms.glsl"
 
 layout(local_size_x = 8, local_size_y = 8) in;
-// A storage buffer, not a uniform block: this lavapipe (Mesa 22.3) inlines uniform-block values
-// that decide a branch and recompiles the shader at each dispatch where that pays; with the
-// camera in the block that was 80-90 ms of LLVM a moving frame (docs/performance_log.md).
-layout(binding = QL_FILTER_BIND_UNIFORMS, scalar) readonly buffer Uniforms { FilterUniforms u; };
 layout(binding = QL_FILTER_BIND_GBUFFER, rgba32f) uniform writeonly image2D uGbuffer;
 layout(binding = QL_FILTER_BIND_ALBEDO, rgba32f) uniform writeonly image2D uAlbedo;
 

@@ -7,13 +7,9 @@
 // frame), so a still image converges to the unbiased accumulation. Display only.
 #extension GL_EXT_scalar_block_layout : require
 #extension GL_GOOGLE_include_directive : require
-#include "../engine/ui/display_filter_types.h"
+#include "include/filter_uniforms.glsl"
 
 layout(local_size_x = 8, local_size_y = 8) in;
-// A storage buffer, not a uniform block: this lavapipe (Mesa 22.3) inlines uniform-block values
-// that decide a branch and recompiles the shader at each dispatch where that pays; with the
-// camera in the block that was 80-90 ms of LLVM a moving frame (docs/performance_log.md).
-layout(binding = QL_FILTER_BIND_UNIFORMS, scalar) readonly buffer Uniforms { FilterUniforms u; };
 layout(binding = QL_FILTER_BIND_ACCUM, rgba32f) uniform readonly image2D uAccum;
 layout(binding = QL_FILTER_BIND_GBUFFER, rgba32f) uniform readonly image2D uGbuffer;
 layout(binding = QL_FILTER_BIND_PREV_GBUFFER, rgba32f) uniform readonly image2D uPrevGbuffer;

@@ -13,10 +13,10 @@ layout(constant_id = 3) const bool kAnyHit = false;  // ids 0..2 are the workgro
 
 layout(binding = QL_BIND_BVH_NODES, rgba32f) uniform readonly restrict imageBuffer uBvhNodes;
 layout(binding = QL_BIND_BVH_TRIS, rgba32f) uniform readonly restrict imageBuffer uBvhTris;
-layout(binding = QL_BIND_BVH_INSTANCES, rgba32f) uniform readonly restrict imageBuffer uBvhInstances;
+layout(binding = QL_BIND_BVH_INSTANCES, rgba32f) uniform readonly restrict imageBuffer uBvhInst;
 #define QL_BVH_NODE(i) imageLoad(uBvhNodes, int(i))
 #define QL_BVH_TRI(i) imageLoad(uBvhTris, int(i))
-#define QL_BVH_INST(i) imageLoad(uBvhInstances, int(i))
+#define QL_BVH_INST(i) imageLoad(uBvhInst, int(i))
 #include "shared/bvh_traverse.h"
 
 layout(binding = QL_BIND_TRACE_RAYS) uniform samplerBuffer uRays;

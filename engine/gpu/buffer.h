@@ -16,7 +16,7 @@ enum class MemoryUse {
 };
 
 // Usage of a table the shaders read through a texel view: declared as a read-only
-// imageBuffer and read with imageLoad (on lavapipe 7-10% faster traversal than texelFetch on
+// imageBuffer and read with imageLoad (on lavapipe 4-11% faster traversal than texelFetch on
 // a samplerBuffer, docs/performance_log.md), or as a samplerBuffer where its format varies.
 constexpr VkBufferUsageFlags kTexelTableUsage =
     VK_BUFFER_USAGE_UNIFORM_TEXEL_BUFFER_BIT | VK_BUFFER_USAGE_STORAGE_TEXEL_BUFFER_BIT;

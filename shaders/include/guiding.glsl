@@ -6,7 +6,8 @@ layout(binding = QL_BIND_GUIDING, scalar) uniform Guiding { GuidingUniforms guid
 // Read-only tables are texel buffers (read with imageLoad, as in scene_access.glsl); the Q
 // and V CDFs stay samplerBuffers, whose view format varies (R32 for strata, RGBA32 for trees
 // and deep Q), where an imageBuffer's format is fixed in the shader.
-layout(binding = QL_BIND_CACHE_POINTS, rgba32f) uniform readonly restrict imageBuffer uCachePoints;  // 2 texels a point
+// The cache points, 2 texels each.
+layout(binding = QL_BIND_CACHE_POINTS, rgba32f) uniform readonly restrict imageBuffer uCachePoints;
 layout(binding = QL_BIND_GRID_BUCKETS, r32ui) uniform readonly restrict uimageBuffer uGridBuckets;
 layout(binding = QL_BIND_GRID_POINTS, r32ui) uniform readonly restrict uimageBuffer uGridPoints;
 layout(binding = QL_BIND_Q_CDF) uniform samplerBuffer uQCdf;

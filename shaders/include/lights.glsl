@@ -1,6 +1,7 @@
 // Light selection (by power, from an inclusive CDF) and light sampling for
 // next event estimation, plus the pdf of hitting a light by a scattered ray.
-layout(binding = QL_BIND_LIGHTS, rgba32ui) uniform readonly restrict uimageBuffer uLights;  // kLightTexels each
+// The lights, kLightTexels texels each.
+layout(binding = QL_BIND_LIGHTS, rgba32ui) uniform readonly restrict uimageBuffer uLights;
 
 // Light i (a texel buffer for the reason in scene_access.glsl); unused fields are not fetched.
 GpuLight lightAt(uint i) {

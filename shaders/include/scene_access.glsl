@@ -4,23 +4,24 @@
 #include "shared/random.h"
 #include "shared/bvh_types.h"
 
-layout(binding = QL_BIND_BVH_NODES, rgba32f) uniform readonly restrict imageBuffer uBvhNodes;
-layout(binding = QL_BIND_BVH_TRIS, rgba32f) uniform readonly restrict imageBuffer uBvhTris;
-layout(binding = QL_BIND_BVH_INSTANCES, rgba32f) uniform readonly restrict imageBuffer uBvhInstances;
-#define QL_BVH_NODE(i) imageLoad(uBvhNodes, int(i))
-#define QL_BVH_TRI(i) imageLoad(uBvhTris, int(i))
-#define QL_BVH_INST(i) imageLoad(uBvhInstances, int(i))
-
-layout(binding = QL_BIND_TRIANGLES, rgba32ui) uniform readonly restrict uimageBuffer uTriangles;  // 2 texels each
-layout(binding = QL_BIND_VERTICES, rgba32f) uniform readonly restrict imageBuffer uVertices;     // 2 texels each
 // Tables read at per-lane indices are texel buffers: on lavapipe a texel load fetches all
 // lanes at once where a storage-buffer load loops over the lanes for each 32-bit word, and
-// imageLoad on a read-only imageBuffer beats texelFetch on a samplerBuffer (7-10% faster
+// imageLoad on a read-only imageBuffer beats texelFetch on a samplerBuffer (4-11% faster
 // traversal, docs/performance_log.md). Integer views, so the uint fields' bits come back as
-// stored on any GPU.
-layout(binding = QL_BIND_INSTANCES, rgba32ui) uniform readonly restrict uimageBuffer uInstances;  // kInstanceTexels each
-layout(binding = QL_BIND_MATERIALS, rgba32f) uniform readonly restrict imageBuffer uMaterials;   // 4 texels each
-layout(binding = QL_BIND_TEXTURES, rgba32ui) uniform readonly restrict uimageBuffer uTextures;    // 1 texel each
+// stored on any GPU. Texels per entry: triangles and vertices 2, instances kInstanceTexels,
+// materials 4, texture headers 1.
+layout(binding = QL_BIND_BVH_NODES, rgba32f) uniform readonly restrict imageBuffer uBvhNodes;
+layout(binding = QL_BIND_BVH_TRIS, rgba32f) uniform readonly restrict imageBuffer uBvhTris;
+layout(binding = QL_BIND_BVH_INSTANCES, rgba32f) uniform readonly restrict imageBuffer uBvhInst;
+#define QL_BVH_NODE(i) imageLoad(uBvhNodes, int(i))
+#define QL_BVH_TRI(i) imageLoad(uBvhTris, int(i))
+#define QL_BVH_INST(i) imageLoad(uBvhInst, int(i))
+
+layout(binding = QL_BIND_TRIANGLES, rgba32ui) uniform readonly restrict uimageBuffer uTriangles;
+layout(binding = QL_BIND_VERTICES, rgba32f) uniform readonly restrict imageBuffer uVertices;
+layout(binding = QL_BIND_INSTANCES, rgba32ui) uniform readonly restrict uimageBuffer uInstances;
+layout(binding = QL_BIND_MATERIALS, rgba32f) uniform readonly restrict imageBuffer uMaterials;
+layout(binding = QL_BIND_TEXTURES, rgba32ui) uniform readonly restrict uimageBuffer uTextures;
 layout(binding = QL_BIND_TEXELS, r32ui) uniform readonly restrict uimageBuffer uTexels;
 
 // Only the fields a caller uses are fetched: the compiler drops the others' texels.
