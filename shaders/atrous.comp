@@ -1,10 +1,11 @@
 #version 460
 // One iteration of the edge-aware a-trous wavelet filter (Dammertz et al. 2010) on the
 // displayed image: a 5x5 B3-spline kernel with holes of `step` pixels, each tap weighted by
-// how alike its primary hit is (normal, distance, base colour) and its brightness. The first
-// iteration divides by the base colour and the last multiplies it back, so texture and
-// material edges stay sharp. Input: rgb sum, a weight; the last output too (a = 1), the
-// ones between carry the colour and the samples. Display only.
+// how alike its primary hit is (normal, distance, base colour) and its brightness, against
+// the brightness's noise (Schied et al. 2017, SVGF). The first iteration divides by the base
+// colour and the last multiplies it back, so texture and material edges stay sharp. Input:
+// rgb sum, a weight; the last output too (a = 1), the ones between carry the colour and its
+// luminance variance. Display only.
 #extension GL_EXT_scalar_block_layout : require
 #extension GL_GOOGLE_include_directive : require
 #include "../engine/ui/display_filter_types.h"
@@ -17,10 +18,6 @@ layout(binding = QL_FILTER_BIND_ALBEDO, rgba32f) uniform readonly image2D uAlbed
 layout(push_constant, scalar) uniform Push { AtrousPush pc; };
 
 float luminance(vec3 c) { return dot(c, vec3(0.2126, 0.7152, 0.0722)); }
-
-// Samples behind a pixel: the first pass's input has them as its weight (rgb sum, a weight),
-// the later passes carry them in alpha (rgb the filtered colour).
-float samplesAt(ivec2 p) { return imageLoad(uInput, p).a; }
 
 vec3 colourAt(ivec2 p) {
   vec4 v = imageLoad(uInput, p);
@@ -35,6 +32,49 @@ vec3 colourAt(ivec2 p) {
   return c / albedo.rgb;
 }
 
+// How alike two primary hits are: normals (n^64), base colours and distances (2% per step of
+// the holes weighs 1/e; depthScale holds that for the centre). The exponent is returned apart
+// so the caller adds its own terms to it (lavapipe evaluates exp as a polynomial on every
+// lane: one per tap). 0 where a surface meets the background.
+float surfaceWeight(vec4 g0, vec3 a0, vec4 g, vec3 a, float depthScale, out float exponent) {
+  exponent = -length(a0 - a) * 10.0;
+  if (g0.w > 0.0 && g.w > 0.0) {
+    float n = max(dot(g0.xyz, g.xyz), 0.0);  // n^64 by squaring
+    n *= n;
+    n *= n;
+    n *= n;
+    n *= n;
+    n *= n;
+    n *= n;
+    exponent -= abs(g0.w - g.w) * depthScale;
+    return n;
+  }
+  return (g0.w > 0.0) == (g.w > 0.0) ? 1.0 : 0.0;
+}
+
+// The first pass's estimate of the centre's luminance variance: the spread of the brightness
+// over its 5x5 neighbourhood, emitters left out (Schied et al. 2017's spatial estimate where
+// a pixel has too few samples of its own), and at least what shot noise gives a mean of
+// `samples` samples of the neighbourhood's brightness (relative deviation 1 / sqrt(samples)):
+// at one sample a dim wall's neighbourhood is often all black, and a variance of 0 would keep
+// its black pixels apart. `mean` gets the neighbourhood's mean brightness. The later passes
+// carry each pixel's variance in alpha.
+float neighbourhoodVariance(ivec2 pixel, ivec2 size, float samples, out float mean) {
+  float sum = 0.0, sumSquares = 0.0, weights = 0.0;
+  for (int dy = -2; dy <= 2; ++dy)
+    for (int dx = -2; dx <= 2; ++dx) {
+      ivec2 q = pixel + ivec2(dx, dy);
+      if (any(lessThan(q, ivec2(0))) || any(greaterThanEqual(q, size))) continue;
+      if (imageLoad(uAlbedo, q).a == 0.0) continue;
+      float l = luminance(colourAt(q));
+      sum += l;
+      sumSquares += l * l;
+      weights += 1.0;
+    }
+  mean = sum / weights;
+  return max(sumSquares / weights - mean * mean, mean * mean / max(samples, 1e-3));
+}
+
 void main() {
   ivec2 pixel = ivec2(gl_GlobalInvocationID.xy);
   ivec2 size = imageSize(uOutput);
@@ -45,50 +85,43 @@ void main() {
   vec4 albedo0 = imageLoad(uAlbedo, pixel);
   vec3 a0 = albedo0.rgb;
   if (albedo0.a == 0.0) {  // an emitter: its radiance is exact, and far from its neighbours'
-    imageStore(uOutput, pixel, vec4(pc.last != 0u ? c0 * a0 : c0, pc.last != 0u ? 1.0 : 1e6));
+    imageStore(uOutput, pixel, vec4(pc.last != 0u ? c0 * a0 : c0, pc.last != 0u ? 1.0 : 0.0));
     return;
   }
-  float l0 = luminance(c0);
-  // Brightness edges stop the filter, but at a few samples a pixel's brightness is mostly
-  // noise: the tolerance widens as 1 / sqrt(samples).
-  float samples = max(samplesAt(pixel), 1e-3);
-  float sigma = pc.colourSigma * max(1.0, 4.0 / sqrt(samples));
   // Depths differing by 2% per step of the holes weigh 1/e (the centre's, for every tap).
   float depthScale = 1.0 / (0.02 * g0.w * float(pc.step) + 1e-4);
+  // Brightness edges stop the filter where they stand out of the centre's noise: a
+  // luminance difference of colourSigma x 4 standard deviations weighs 1/e (SVGF's
+  // sigma_l = 4). At a few samples a pixel's brightness is mostly noise, and the tolerance is
+  // wide; as the accumulation converges it narrows to the image's own edges. The taps are
+  // compared with the centre's brightness, in the first pass with its neighbourhood's mean:
+  // a single bright or black sample is no edge.
+  float l0 = luminance(c0);
+  float variance = pc.first != 0u
+                       ? neighbourhoodVariance(pixel, size, imageLoad(uInput, pixel).a, l0)
+                       : imageLoad(uInput, pixel).a;
+  float tolerance = 1.0 / (4.0 * pc.colourSigma * sqrt(variance) + 1e-4);
   vec3 sum = vec3(0.0);
   float weights = 0.0;
+  float weightedVariance = 0.0;  // sum w^2 var: the output's variance times weights^2
   for (int dy = -2; dy <= 2; ++dy)
     for (int dx = -2; dx <= 2; ++dx) {
       ivec2 q = pixel + pc.step * ivec2(dx, dy);
       if (any(lessThan(q, ivec2(0))) || any(greaterThanEqual(q, size))) continue;
-      vec3 c = colourAt(q);
-      vec4 g = imageLoad(uGbuffer, q);
       vec4 albedo = imageLoad(uAlbedo, q);
       if (albedo.a == 0.0) continue;  // emitters stay out of their neighbours
-      vec3 a = albedo.rgb;
-      float w = kernel[abs(dx)] * kernel[abs(dy)];
-      // The edge-stopping factors multiply: their exponents add up to one exp (lavapipe
-      // evaluates exp and pow as polynomials on every lane, so each one saved counts).
-      float l = luminance(c);
-      float exponent = -length(a0 - a) * 10.0 - abs(l0 - l) / (sigma * (0.5 * (l0 + l)) + 1e-4);
-      if (g0.w > 0.0 && g.w > 0.0) {
-        float n = max(dot(g0.xyz, g.xyz), 0.0);  // n^64 by squaring
-        n *= n;
-        n *= n;
-        n *= n;
-        n *= n;
-        n *= n;
-        n *= n;
-        w *= n;
-        exponent -= abs(g0.w - g.w) * depthScale;
-      } else if ((g0.w > 0.0) != (g.w > 0.0)) {
-        w = 0.0;  // a surface and the background do not mix
-      }
-      w *= exp(exponent);
+      vec3 c = colourAt(q);
+      float exponent;
+      float w = kernel[abs(dx)] * kernel[abs(dy)] *
+                surfaceWeight(g0, a0, imageLoad(uGbuffer, q), albedo.rgb, depthScale, exponent);
+      w *= exp(exponent - abs(l0 - luminance(c)) * tolerance);
       sum += w * c;
       weights += w;
+      // The first pass knows the centre's variance only: its neighbours' is taken as the same.
+      weightedVariance += w * w * (pc.first != 0u ? variance : imageLoad(uInput, q).a);
     }
   vec3 filtered = weights > 0.0 ? sum / weights : c0;
+  float filteredVariance = weights > 0.0 ? weightedVariance / (weights * weights) : variance;
   if (pc.last != 0u) filtered *= a0;
-  imageStore(uOutput, pixel, vec4(filtered, pc.last != 0u ? 1.0 : samples));
+  imageStore(uOutput, pixel, vec4(filtered, pc.last != 0u ? 1.0 : filteredVariance));
 }

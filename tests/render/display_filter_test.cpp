@@ -1,7 +1,8 @@
 // The display filter (temporal reuse by reprojection, the a-trous denoiser) on the Cornell
 // box: while the camera moves it shows a frame much closer to the converged image than the
 // frame's own samples, it converges to the unfiltered accumulation once the camera is still,
-// and the denoiser lowers a still frame's error; the tracer's accumulation is never touched.
+// and the denoiser lowers a still frame's error (also on dim, noisy walls, where more
+// samples must give a better image); the tracer's accumulation is never touched.
 #include "engine/ui/display_filter.h"
 
 #include <cstdio>
@@ -108,7 +109,37 @@ TEST_F(DisplayFilterTest, DenoiserLowersTheErrorOfAStillFrame) {
   const double rawError = relativeMse(renderer.tracer().readImage(), converged);
   const double denoisedError = relativeMse(filter.readOutput(), converged);
   std::printf("denoiser: relMSE %.4f -> %.4f\n", rawError, denoisedError);
-  EXPECT_LT(denoisedError, 0.7 * rawError) << "raw " << rawError << ", denoised " << denoisedError;
+  // 0.64 of the raw error with a luminance tolerance from the sample count alone, 0.20 with
+  // one from the brightness's variance.
+  EXPECT_LT(denoisedError, 0.35 * rawError) << "raw " << rawError << ", denoised " << denoisedError;
+}
+
+// The door scene's dim, indirectly lit walls at 1 and 8 spp: where a pixel's brightness is
+// mostly noise, the denoiser must average it away rather than keep bright samples apart (a
+// tolerance too tight for the noise prints the kernel's holes as a lattice, and the lattice
+// grew with the samples: 0.19 at 1 spp, 0.39 at 8 with a tolerance from the sample count
+// alone). More samples in must give a better image out.
+TEST_F(DisplayFilterTest, DenoiserAveragesTheNoiseOfDimIndirectLight) {
+  const scene::SceneAsset door = gltf::loadGltf(assetPath("door_ajar.gltf"));
+  double denoised[2] = {0, 0};
+  const uint32_t spps[2] = {1, 8};
+  for (int i = 0; i < 2; ++i) {
+    render::RenderSettings s = smallSettings(96, 54, 11);
+    s.samplesPerFrame = spps[i];
+    session::Renderer renderer(ctx(), door, s, session::disabledGuiding(), 1.0f);
+    const render::CameraView camera = renderer.world().camera();
+    renderer.renderFrame(0.0f, camera);
+    ui::DisplayFilter filter(ctx());
+    ui::DisplayFilterSettings filterSettings;
+    filterSettings.denoise = true;
+    filterFrame(filter, renderer, camera, filterSettings);
+    const image::LinearImage converged = reference(door, s, camera);
+    const double rawError = relativeMse(renderer.tracer().readImage(), converged);
+    denoised[i] = relativeMse(filter.readOutput(), converged);
+    std::printf("door, %u spp: relMSE %.4f -> %.4f\n", spps[i], rawError, denoised[i]);
+    EXPECT_LT(denoised[i], 0.1 * rawError) << spps[i] << " spp";
+  }
+  EXPECT_LT(denoised[1], denoised[0]) << "8 spp denoised no better than 1 spp";
 }
 
 }  // namespace
