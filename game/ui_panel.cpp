@@ -56,7 +56,6 @@ void drawStatsSection(const StatsView& v) {
     ImGui::Text("%.2f ms", s.gpuTotalMs());
     ImGui::EndTable();
   }
-  if (!v.gpuTimesReliable) ImGui::TextDisabled("(pass timings undercount on this device)");
   ImGui::TextDisabled("%s", v.device.c_str());
 }
 

@@ -18,9 +18,6 @@ struct StatsView {
   uint32_t accumulatedSpp = 0;
   uint32_t renderWidth = 0, renderHeight = 0;
   std::string device;
-  // llvmpipe takes timestamps late once a render pass ran in the frame, so the
-  // per-pass numbers of the windowed demo undercount there (headless ones are right).
-  bool gpuTimesReliable = true;
   std::string cameraPath;  // the Camera section's line on path recording or playback
 };
 

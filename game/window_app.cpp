@@ -228,12 +228,8 @@ int WindowApp::run() {
     clock_.advance(step);
     const render::PathTracer& tracer = renderer_.tracer();
     if (uiVisible_) {
-      StatsView view{&stats_,
-                     tracer.accumulatedSamples(),
-                     tracer.settings().width,
-                     tracer.settings().height,
-                     ctx_->deviceName(),
-                     ctx_->deviceName().find("llvmpipe") == std::string::npos};
+      StatsView view{&stats_, tracer.accumulatedSamples(), tracer.settings().width,
+                     tracer.settings().height, ctx_->deviceName()};
       auto windowUi = [&] { drawWindowPanel(); };
       view.cameraPath = paths_.status();
       PanelChanges changes =
