@@ -60,7 +60,7 @@ float surfaceWeight(vec4 g0, vec3 a0, vec4 g, vec3 a, float depthScale, out floa
 // its black pixels apart. `mean` gets the neighbourhood's mean brightness. The later passes
 // carry each pixel's variance in alpha.
 float neighbourhoodVariance(ivec2 pixel, ivec2 size, float samples, out float mean) {
-  float sum = 0.0, sumSquares = 0.0, weights = 0.0;
+  float sum = 0.0, sumSquares = 0.0, count = 0.0;  // the centre counts: never 0
   for (int dy = -2; dy <= 2; ++dy)
     for (int dx = -2; dx <= 2; ++dx) {
       ivec2 q = pixel + ivec2(dx, dy);
@@ -69,10 +69,10 @@ float neighbourhoodVariance(ivec2 pixel, ivec2 size, float samples, out float me
       float l = luminance(colourAt(q));
       sum += l;
       sumSquares += l * l;
-      weights += 1.0;
+      count += 1.0;
     }
-  mean = sum / weights;
-  return max(sumSquares / weights - mean * mean, mean * mean / max(samples, 1e-3));
+  mean = sum / count;
+  return max(sumSquares / count - mean * mean, mean * mean / max(samples, 1e-3));
 }
 
 void main() {

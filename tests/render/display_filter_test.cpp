@@ -53,6 +53,25 @@ class DisplayFilterTest : public GpuTest {
       rec.finish();
     });
   }
+  struct Errors {
+    double raw, denoised;  // relMSE of the frame's samples and of the denoised frame
+  };
+  // One still frame of `asset` at settings `s`, denoised with the default settings, against
+  // the converged image; the tracer's accumulation must stay as it was (display only).
+  Errors denoiseOneFrame(const scene::SceneAsset& asset, const render::RenderSettings& s) {
+    session::Renderer renderer(ctx(), asset, s, session::disabledGuiding(), 1.0f);
+    const render::CameraView camera = renderer.world().camera();
+    renderer.renderFrame(0.0f, camera);
+    const auto before = renderer.tracer().accumulation().readFloats(ctx());
+    ui::DisplayFilter filter(ctx());
+    ui::DisplayFilterSettings filterSettings;
+    filterSettings.denoise = true;
+    filterFrame(filter, renderer, camera, filterSettings);
+    EXPECT_EQ(renderer.tracer().accumulation().readFloats(ctx()), before) << "display only";
+    const image::LinearImage converged = reference(asset, s, camera);
+    return {relativeMse(renderer.tracer().readImage(), converged),
+            relativeMse(filter.readOutput(), converged)};
+  }
 };
 
 TEST_F(DisplayFilterTest, ReusesHistoryWhileMovingAndConvergesToTheAccumulationWhenStill) {
@@ -95,23 +114,11 @@ TEST_F(DisplayFilterTest, ReusesHistoryWhileMovingAndConvergesToTheAccumulationW
 }
 
 TEST_F(DisplayFilterTest, DenoiserLowersTheErrorOfAStillFrame) {
-  const render::RenderSettings s = settings(7, 4);
-  session::Renderer renderer(ctx(), asset_, s, session::disabledGuiding(), 1.0f);
-  const render::CameraView camera = renderer.world().camera();
-  renderer.renderFrame(0.0f, camera);
-  const auto before = renderer.tracer().accumulation().readFloats(ctx());
-  ui::DisplayFilter filter(ctx());
-  ui::DisplayFilterSettings filterSettings;
-  filterSettings.denoise = true;
-  filterFrame(filter, renderer, camera, filterSettings);
-  EXPECT_EQ(renderer.tracer().accumulation().readFloats(ctx()), before) << "display only";
-  const image::LinearImage converged = reference(asset_, s, camera);
-  const double rawError = relativeMse(renderer.tracer().readImage(), converged);
-  const double denoisedError = relativeMse(filter.readOutput(), converged);
-  std::printf("denoiser: relMSE %.4f -> %.4f\n", rawError, denoisedError);
+  const Errors e = denoiseOneFrame(asset_, settings(7, 4));
+  std::printf("denoiser: relMSE %.4f -> %.4f\n", e.raw, e.denoised);
   // 0.64 of the raw error with a luminance tolerance from the sample count alone, 0.20 with
   // one from the brightness's variance.
-  EXPECT_LT(denoisedError, 0.35 * rawError) << "raw " << rawError << ", denoised " << denoisedError;
+  EXPECT_LT(e.denoised, 0.35 * e.raw) << "raw " << e.raw << ", denoised " << e.denoised;
 }
 
 // The door scene's dim, indirectly lit walls at 1 and 8 spp: where a pixel's brightness is
@@ -126,18 +133,10 @@ TEST_F(DisplayFilterTest, DenoiserAveragesTheNoiseOfDimIndirectLight) {
   for (int i = 0; i < 2; ++i) {
     render::RenderSettings s = smallSettings(96, 54, 11);
     s.samplesPerFrame = spps[i];
-    session::Renderer renderer(ctx(), door, s, session::disabledGuiding(), 1.0f);
-    const render::CameraView camera = renderer.world().camera();
-    renderer.renderFrame(0.0f, camera);
-    ui::DisplayFilter filter(ctx());
-    ui::DisplayFilterSettings filterSettings;
-    filterSettings.denoise = true;
-    filterFrame(filter, renderer, camera, filterSettings);
-    const image::LinearImage converged = reference(door, s, camera);
-    const double rawError = relativeMse(renderer.tracer().readImage(), converged);
-    denoised[i] = relativeMse(filter.readOutput(), converged);
-    std::printf("door, %u spp: relMSE %.4f -> %.4f\n", spps[i], rawError, denoised[i]);
-    EXPECT_LT(denoised[i], 0.1 * rawError) << spps[i] << " spp";
+    const Errors e = denoiseOneFrame(door, s);
+    denoised[i] = e.denoised;
+    std::printf("door, %u spp: relMSE %.4f -> %.4f\n", spps[i], e.raw, e.denoised);
+    EXPECT_LT(e.denoised, 0.1 * e.raw) << spps[i] << " spp";
   }
   EXPECT_LT(denoised[1], denoised[0]) << "8 spp denoised no better than 1 spp";
 }
