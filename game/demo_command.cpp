@@ -52,8 +52,8 @@ int runHeadless(const DemoArgs& a, const CommonOptions& common) {
   auto ctx = createContext(common, false);
   const render::RenderSettings& s = a.settings;
   session::Renderer renderer(*ctx, asset, s, a.guiding);
-  reportSceneLighting(renderer.scene().usesFallbackSky(), renderer.scene().hasEnvironment(), asset,
-                      a.scene);
+  reportSceneLighting(renderer.scene().usesFallbackSky(), renderer.scene().glowMapsOnly(),
+                      renderer.scene().hasEnvironment(), asset, a.scene);
   const DemoTimeline timeline(a, renderer.world().camera(), asset.bounds.radius());
   const uint32_t frameCount = timeline.frames();
 

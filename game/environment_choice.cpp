@@ -42,9 +42,15 @@ void attachEnvironment(scene::SceneAsset& scene, const EnvironmentSettings& s) {
   scene.environment = loadEnvironment(s);
 }
 
-void reportSceneLighting(bool fallbackSky, bool environmentLit, const scene::SceneAsset& asset,
-                         const std::string& sceneName) {
-  if (fallbackSky)
+void reportSceneLighting(bool fallbackSky, bool glowMapsOnly, bool environmentLit,
+                         const scene::SceneAsset& asset, const std::string& sceneName) {
+  if (fallbackSky && glowMapsOnly)
+    std::fprintf(stderr,
+                 "qlight: warning: %s is lit only by emissive textures (glow maps): lit by a "
+                 "uniform white sky as well (the fallback; --env or --sky choose the lighting, "
+                 "--sky 0,0,0 none)\n",
+                 sceneName.c_str());
+  else if (fallbackSky)
     std::fprintf(stderr,
                  "qlight: warning: %s has no light: lit by a uniform white sky (the fallback; "
                  "--env or --sky choose the lighting)\n",

@@ -21,9 +21,10 @@ std::optional<scene::EnvironmentAsset> loadEnvironment(const EnvironmentSettings
 // Puts the chosen environment into the scene (and leaves the scene alone without one).
 void attachEnvironment(scene::SceneAsset& scene, const EnvironmentSettings& s);
 
-// One line on stderr when the scene is lit by the fallback sky, or the chosen environment adds
-// no light (it is black), as the renderer's GpuScene decided (RenderStats holds both).
-void reportSceneLighting(bool fallbackSky, bool environmentLit, const scene::SceneAsset& asset,
-                         const std::string& sceneName);
+// One line on stderr when the scene is lit by the fallback sky (it has no light, or only glow
+// maps), or the chosen environment adds no light (it is black), as the renderer's GpuScene
+// decided (RenderStats holds all three).
+void reportSceneLighting(bool fallbackSky, bool glowMapsOnly, bool environmentLit,
+                         const scene::SceneAsset& asset, const std::string& sceneName);
 
 }  // namespace qlight::game

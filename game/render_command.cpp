@@ -47,7 +47,8 @@ int runRender(RenderArgs a, const CommonOptions& common) {
         progress.update(done, std::to_string(done) + " of " + std::to_string(a.spp) + " spp");
       });
   progress.finish();
-  reportSceneLighting(result.stats.fallbackSky, result.stats.environmentLight, asset, a.scene);
+  reportSceneLighting(result.stats.fallbackSky, result.stats.glowMapsOnly,
+                      result.stats.environmentLight, asset, a.scene);
   image::writeImage(a.out, result.image, s.exposure, s.tonemap);
   nlohmann::json stats = session::statsToJson(result.stats);
   stats["scene"] = a.scene;

@@ -130,6 +130,10 @@ Surface hitSurface(PathState st) {
 // Emission at the hit; after the camera ray, MIS-weighted against NEE having
 // chosen the same light at the previous vertex. Returns the unweighted value.
 vec3 addEmission(inout PathState st, Surface s, Switches sw) {
+  // Past the camera ray the emitter is read as NEE reads it, at its finest texels: MIS combines
+  // two estimates of one emission only if both see the same texture (a cone's coarse level
+  // would blur a glow map's light over the triangles around it).
+  if (!atCameraHit()) s.textureLod = kFinestLod;
   vec3 le = surfaceEmission(s);
   if (le != vec3(0.0)) {
     float w = 1.0;

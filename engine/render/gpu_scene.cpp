@@ -8,6 +8,7 @@
 #include <stdexcept>
 
 #include "engine/bvh/scene_bvh.h"
+#include "engine/render/emitter_power.h"
 #include "engine/render/environment_tables.h"
 #include "engine/render/scene_packing.h"
 #include "engine/render/texture_mips.h"
@@ -64,6 +65,7 @@ GpuScene::GpuScene(const gpu::Context& ctx, const scene::SceneAsset& asset,
   requireGeometryFits();
   uploadStatic();
   uploadEnvironment();
+  triangleEmissions_ = triangleEmissions(asset);
   const auto blasStart = Clock::now();
   accel_.buildMeshes(asset.meshes);
   {
@@ -216,6 +218,9 @@ void GpuScene::uploadStatic() {
 void GpuScene::uploadLights(const SceneDraw& draw) {
   lights_.clear();
   for (GpuTriangle& t : triangles_) t.light = shared::kNoLight;
+  // A scene whose emitters are all glow maps (emissive textures) and nothing else is a model
+  // made to be seen under the viewer's light: it gets the fallback sky as well.
+  bool glowOnly = true, anyEmitter = false;
   // Emissive triangles, in world space at this frame.
   for (const MeshDraw& d : draw.meshes) {
     const scene::MeshAsset& mesh = asset_.meshes[d.mesh];
@@ -238,7 +243,11 @@ void GpuScene::uploadLights(const SceneDraw& draw) {
       l.emission = m.emissive;
       l.flags = (m.doubleSided ? shared::kLightDoubleSided : 0u) |
                 (mirrored ? shared::kLightMirrored : 0u);
-      l.power = luminance(m.emissive) * l.area * kPi * (m.doubleSided ? 2.0f : 1.0f);
+      glowOnly &= m.emissiveTexture.present();
+      anyEmitter = true;
+      l.power =
+          luminance(triangleEmissions_[d.mesh][t]) * l.area * kPi * (m.doubleSided ? 2.0f : 1.0f);
+      if (!(l.power > 0.0f)) continue;  // black texels only: found by scattered rays alone
       // A triangle instanced twice is one light per instance; the hit maps to the last.
       triangles_[l.triangle].light = uint32_t(lights_.size());
       lights_.push_back(l);
@@ -265,11 +274,14 @@ void GpuScene::uploadLights(const SceneDraw& draw) {
       l.power = kPi * radius_ * radius_ * lum;
     }
     if (l.power > 0.0f && std::isfinite(l.power)) lights_.push_back(l);
+    glowOnly = false;
+    anyEmitter = true;
   }
   // The user's environment lights the scene whatever else does; without one, a scene with no
   // light gets the fallback sky.
   const std::optional<scene::EnvironmentAsset>& env = asset_.environment;
-  fallbackSky_ = !env && lights_.empty() && options_.fallbackSkyRadiance > 0.0f;
+  glowMapsOnly_ = anyEmitter && glowOnly;
+  fallbackSky_ = !env && (lights_.empty() || glowMapsOnly_) && options_.fallbackSkyRadiance > 0.0f;
   std::vector<GpuLight> sky;
   if (env) {
     sky = skyLights(*env);
@@ -277,7 +289,7 @@ void GpuScene::uploadLights(const SceneDraw& draw) {
     scene::EnvironmentAsset fallback;
     fallback.color = glm::vec3(options_.fallbackSkyRadiance);
     sky = skyLights(fallback);
-    sky[0].power = 1.0f;  // the only light
+    if (lights_.empty()) sky[0].power = 1.0f;  // the only light
   }
   float skyPower = 0.0f;
   for (const GpuLight& l : sky) skyPower += l.power;

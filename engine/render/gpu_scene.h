@@ -15,9 +15,10 @@
 namespace qlight::render {
 
 struct SceneLightingOptions {
-  // Radiance of the uniform sky added when the scene has no emitter at all and the user chose
-  // no environment (SceneAsset::environment), so that a glTF without lights renders visibly
-  // instead of black (documented fallback).
+  // Radiance of the uniform sky added when the scene has no light, or no emitter but emissive
+  // textures (glow maps: a model made to be seen under the viewer's light), and the user chose
+  // no environment (SceneAsset::environment), so that such a glTF renders visibly instead of
+  // black (documented fallback).
   float fallbackSkyRadiance = 1.0f;
 };
 
@@ -38,6 +39,9 @@ class GpuScene {
 
   uint32_t lightCount() const { return lightCount_; }
   bool usesFallbackSky() const { return fallbackSky_; }
+  // Every emitter of the scene is an emissive texture (a glow map, usesFallbackSky() says
+  // whether the fallback sky lights it as well).
+  bool glowMapsOnly() const { return glowMapsOnly_; }
   // The user's environment is the last light (it has power: a black one is left out).
   bool hasEnvironment() const { return environmentLit_; }
   uint32_t triangleCount() const { return triangleCount_; }
@@ -94,6 +98,8 @@ class GpuScene {
   uint32_t lightCount_ = 0;
   uint32_t triangleCount_ = 0;
   bool fallbackSky_ = false;
+  bool glowMapsOnly_ = false;
+  std::vector<std::vector<glm::vec3>> triangleEmissions_;  // emitter_power.h, per mesh
   bool environmentLit_ = false;
   std::vector<double> environmentTileIntegrals_;  // of the map's tiles (environment_tables.h)
   glm::vec3 center_{0.0f};

@@ -5,13 +5,14 @@
 #include <cstring>
 
 namespace qlight::render {
-namespace {
 
 float toLinear(uint8_t c, bool srgb) {
   float v = c / 255.0f;
   if (!srgb) return v;
   return v <= 0.04045f ? v / 12.92f : std::pow((v + 0.055f) / 1.055f, 2.4f);
 }
+
+namespace {
 
 uint8_t fromLinear(float v, bool srgb) {
   v = std::clamp(v, 0.0f, 1.0f);

@@ -14,5 +14,7 @@ uint32_t mipLevelCount(uint32_t width, uint32_t height);
 // Texels (RGBA8 packed in a uint32 each) of all levels, level 0 first.
 uint64_t mipChainTexels(uint32_t width, uint32_t height);
 std::vector<uint32_t> buildMipChain(const scene::TextureAsset& texture);
+// An 8-bit channel as linear light (decoded from sRGB when srgb).
+float toLinear(uint8_t c, bool srgb);
 
 }  // namespace qlight::render

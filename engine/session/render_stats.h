@@ -29,6 +29,7 @@ struct RenderStats {
   bool traceInShade = false;  // the extension rays' trace fused into the shade pass
   uint32_t lights = 0;
   bool fallbackSky = false;
+  bool glowMapsOnly = false;      // every emitter an emissive texture (GpuScene::glowMapsOnly)
   bool environmentLight = false;  // the user's environment lights the scene (not black)
   bool guided = false;
   bool deepQ = false;  // guided by the network (--guiding dqn), not the tables

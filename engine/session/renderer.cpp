@@ -165,6 +165,7 @@ RenderStats Renderer::newStats() const {
   s.traceInShade = render::tracesInShade(tracer_.settings().traceKernel, ctx_);
   s.lights = scene_.lightCount();
   s.fallbackSky = scene_.usesFallbackSky();
+  s.glowMapsOnly = scene_.glowMapsOnly();
   s.environmentLight = scene_.hasEnvironment();
   s.guided = guided();
   s.deepQ = s.guided && dqnActive_;

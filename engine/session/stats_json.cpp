@@ -25,6 +25,7 @@ nlohmann::json statsToJson(const RenderStats& s) {
   j["trace_kernel"] = s.traceInShade ? "fused" : "separate";
   j["lights"] = s.lights;
   j["fallback_sky"] = s.fallbackSky;
+  j["glow_maps_only"] = s.glowMapsOnly;
   j["environment_light"] = s.environmentLight;
   j["triangles"] = s.triangles;
   j["scene_gpu_bytes"] = s.sceneGpuBytes;

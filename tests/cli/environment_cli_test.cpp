@@ -120,6 +120,37 @@ TEST(EnvironmentCli, FallbackSkyOnlyWhenNothingWasChosen) {
   EXPECT_EQ(stats()["fallback_sky"], false);
 }
 
+// A model whose only emitters are glow maps (MultiUVTest: an emissive texture on TEXCOORD_1) is
+// made to be seen under the viewer's light: the fallback sky lights it as well, with a warning
+// naming why, and its emissive triangles over black texels are no lights; `--sky 0,0,0` leaves
+// it lit by its glow alone.
+TEST(EnvironmentCli, GlowMapsAloneGetTheFallbackSkyAsWell) {
+  auto render = [&](const std::string& options) {
+    return runQlight("render --scene " + std::string(QLIGHT_SAMPLES_DIR) +
+                     "/features/MultiUVTest/glTF/MultiUVTest.gltf --width 24 --height 24 --spp 4 "
+                     "--out " +
+                     (kDir / "glow.pfm").string() + " --stats-json " + (kDir / "s.json").string() +
+                     " " + options);
+  };
+  RunResult plain = render("");
+  ASSERT_EQ(plain.exitCode, 0) << plain.output;
+  EXPECT_NE(plain.output.find("is lit only by emissive textures (glow maps): lit by a uniform "
+                              "white sky as well (the fallback"),
+            std::string::npos)
+      << plain.output;
+  EXPECT_EQ(stats()["fallback_sky"], true);
+  EXPECT_EQ(stats()["glow_maps_only"], true);
+  const double lit = meanRadiance(kDir / "glow.pfm");
+
+  RunResult dark = render("--sky 0,0,0");
+  ASSERT_EQ(dark.exitCode, 0) << dark.output;
+  EXPECT_EQ(dark.output.find("fallback"), std::string::npos) << dark.output;
+  EXPECT_EQ(stats()["fallback_sky"], false);
+  const double glow = meanRadiance(kDir / "glow.pfm");
+  EXPECT_GT(glow, 0.0);
+  EXPECT_GT(lit, 1.5 * glow);
+}
+
 TEST(EnvironmentCli, SettingsFileChoosesTheEnvironment) {
   writeText(kDir / "env.json",
             "{\"environment\": {\"sky\": [0.2, 0.3, 0.4], \"strength\": 2, \"rotation\": 10}}");
