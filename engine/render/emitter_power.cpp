@@ -4,6 +4,7 @@
 #include <cmath>
 #include <map>
 
+#include "engine/render/scene_packing.h"
 #include "engine/render/texture_mips.h"
 
 namespace qlight::render {
@@ -138,16 +139,11 @@ std::vector<std::vector<glm::vec3>> triangleEmissions(const scene::SceneAsset& s
       auto it = pyramids.find(b.index);
       if (it == pyramids.end())
         it = pyramids.emplace(b.index, buildPyramid(scene.textures[size_t(b.index)])).first;
-      // KHR_texture_transform as the shader applies it (scene_packing.cpp).
-      const float c = std::cos(b.rotation), s = std::sin(b.rotation);
+      const TextureTransformRows transform = textureTransformRows(b);
       const std::vector<glm::vec2>& uvs =
           b.texCoord == 1 && !mesh.uv1.empty() ? mesh.uv1 : mesh.uv0;
       glm::vec2 uv[3];
-      for (int k = 0; k < 3; ++k) {
-        const glm::vec2 u = uvs[mesh.indices[t * 3 + size_t(k)]];
-        uv[k] = {c * b.scale.x * u.x + s * b.scale.y * u.y + b.offset.x,
-                 -s * b.scale.x * u.x + c * b.scale.y * u.y + b.offset.y};
-      }
+      for (int k = 0; k < 3; ++k) uv[k] = transform.apply(uvs[mesh.indices[t * 3 + size_t(k)]]);
       out[m][t] = material.emissive * meanOverTriangle(it->second, uv);
     }
   }

@@ -6,11 +6,10 @@ namespace qlight::render {
 namespace {
 
 shared::GpuTextureView packView(const scene::TextureBinding& b) {
-  const float c = std::cos(b.rotation), s = std::sin(b.rotation);
+  const TextureTransformRows rows = textureTransformRows(b);
   shared::GpuTextureView v{};
-  // KHR_texture_transform: T * R * S with R = [[cos, sin], [-sin, cos]].
-  v.uRow = glm::vec4(c * b.scale.x, s * b.scale.y, b.offset.x, float(b.texCoord));
-  v.vRow = glm::vec4(-s * b.scale.x, c * b.scale.y, b.offset.y, float(b.index));
+  v.uRow = glm::vec4(rows.u, float(b.texCoord));
+  v.vRow = glm::vec4(rows.v, float(b.index));
   return v;
 }
 
@@ -19,6 +18,12 @@ bool hasExtras(const scene::MeshAsset& mesh) {
 }
 
 }  // namespace
+
+TextureTransformRows textureTransformRows(const scene::TextureBinding& b) {
+  const float c = std::cos(b.rotation), s = std::sin(b.rotation);
+  // KHR_texture_transform: T * R * S with R = [[cos, sin], [-sin, cos]].
+  return {{c * b.scale.x, s * b.scale.y, b.offset.x}, {-s * b.scale.x, c * b.scale.y, b.offset.y}};
+}
 
 shared::GpuVertex packVertex(const scene::MeshAsset& mesh, size_t i, glm::vec3 position,
                              glm::vec3 normal) {

@@ -14,6 +14,15 @@ shared::GpuVertex packVertex(const scene::MeshAsset& mesh, size_t i, glm::vec3 p
                              glm::vec3 normal);
 
 shared::GpuMaterial packMaterial(const scene::MaterialAsset& m);
+// A binding's KHR_texture_transform as the shader applies it: uv' = (dot(u.xy, uv) + u.z,
+// dot(v.xy, uv) + v.z).
+struct TextureTransformRows {
+  glm::vec3 u, v;
+  glm::vec2 apply(glm::vec2 uv) const {
+    return {u.x * uv.x + u.y * uv.y + u.z, v.x * uv.x + v.y * uv.y + v.z};
+  }
+};
+TextureTransformRows textureTransformRows(const scene::TextureBinding& b);
 bool usesTextures(const scene::MaterialAsset& m);
 
 // The vertex texel buffer: every mesh's GpuVertex entries, then the GpuVertexExtras of the
