@@ -28,6 +28,8 @@ class EmbreeTracer {
   // Bytes Embree holds after the build (its memory monitor): BVH plus vertex and index copies.
   int64_t memoryBytes() const { return memory_->current.load(); }
   int64_t peakMemoryBytes() const { return memory_->peak.load(); }
+  // The committed scene (geometry id = instance index), for other single-ray users.
+  RTCScene scene() const { return scene_.get(); }
 
   // Every ray through rtcIntersect1 (closest hit) or rtcOccluded1 (any hit),
   // spread over the threads in small chunks; fills `hits` (one per ray) and
