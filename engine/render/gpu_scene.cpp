@@ -179,6 +179,7 @@ void GpuScene::uploadStatic() {
     materials.push_back(packMaterial(m));
     hasTextures_ |= usesTextures(m);
     hasAlphaTest_ |= m.alphaMode != scene::AlphaMode::Opaque;
+    hasMicrofacet_ |= !m.unlit && !exactlyLambertian(m);
   }
   if (materials.empty()) materials.push_back(packMaterial(scene::MaterialAsset{}));
 
@@ -411,6 +412,7 @@ std::vector<uint32_t> GpuScene::specializationFeatures() const {
   features[shared::kSpecUseVertexExtras] = hasVertexExtras();
   features[shared::kSpecUseEnvironmentMap] = hasEnvironmentMap();
   features[shared::kSpecUseAlphaTest] = hasAlphaTest();
+  features[shared::kSpecUseMicrofacet] = hasMicrofacet();
   return features;
 }
 

@@ -56,6 +56,8 @@ class GpuScene {
   bool hasTextures() const { return hasTextures_; }
   bool hasVertexExtras() const { return hasVertexExtras_; }  // TEXCOORD_1, COLOR_0, tangents
   bool hasAlphaTest() const { return hasAlphaTest_; }        // some material is MASK or BLEND
+  // Some scattering material is not exactly Lambertian (metal, a specular layer, transmission).
+  bool hasMicrofacet() const { return hasMicrofacet_; }
   // The specialization constants of shaders/include/features.glsl that the scene decides
   // (guiding's stay 0), indexed by constant id.
   std::vector<uint32_t> specializationFeatures() const;
@@ -109,6 +111,7 @@ class GpuScene {
   bool hasTextures_ = false;
   bool hasVertexExtras_ = false;
   bool hasAlphaTest_ = false;
+  bool hasMicrofacet_ = false;
   bool hasNonTriangleLights_ = false;
 
   std::unique_ptr<gpu::Buffer> vertices_, triangleBuffer_, materials_, textures_, texels_;

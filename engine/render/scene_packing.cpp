@@ -54,6 +54,11 @@ shared::GpuMaterial packMaterial(const scene::MaterialAsset& m) {
   return g;
 }
 
+bool exactlyLambertian(const scene::MaterialAsset& m) {
+  // The metallic texture only scales the factor; a specular layer of weight 0 is none.
+  return m.metallicFactor == 0.0f && m.specularFactor == 0.0f && m.transmissionFactor == 0.0f;
+}
+
 bool usesTextures(const scene::MaterialAsset& m) {
   return m.baseColorTexture.present() || m.metallicRoughnessTexture.present() ||
          m.emissiveTexture.present() || m.normalTexture.present();

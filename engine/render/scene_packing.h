@@ -24,6 +24,8 @@ struct TextureTransformRows {
 };
 TextureTransformRows textureTransformRows(const scene::TextureBinding& b);
 bool usesTextures(const scene::MaterialAsset& m);
+// Metallic 0, specular layer 0, no transmission: the BSDF is baseColor / pi.
+bool exactlyLambertian(const scene::MaterialAsset& m);
 
 // The vertex texel buffer: every mesh's GpuVertex entries, then the GpuVertexExtras of the
 // meshes with TEXCOORD_1, COLOR_0 or tangents. firstVertex[i] is mesh i's first vertex,

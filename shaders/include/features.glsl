@@ -2,6 +2,8 @@
 // lavapipe both sides of every branch execute (masked SIMD), so code for a
 // feature the frame does not use must not be in the pipeline at all: a
 // specialization constant set to false removes it at pipeline creation.
+#ifndef QLIGHT_FEATURES_GLSL
+#define QLIGHT_FEATURES_GLSL
 #include "shared/specialization.h"
 layout(constant_id = QL_SPEC_USE_TEXTURES) const bool kUseTextures = true;
 layout(constant_id = QL_SPEC_USE_GUIDING) const bool kUseGuiding = true;
@@ -35,3 +37,6 @@ layout(constant_id = QL_SPEC_BOUNCE_PHASE) const uint kBouncePhase = 0u;
 layout(constant_id = QL_SPEC_LEARN) const bool kLearning = true;
 // The shade pass traces the ray to the hit it shades itself (fused), else the trace pass did.
 layout(constant_id = QL_SPEC_TRACE_IN_SHADE) const bool kTraceInShade = false;
+// Some material is not exactly Lambertian (path_common.glsl hands it to shared/bsdf.h).
+layout(constant_id = QL_SPEC_USE_MICROFACET) const bool kUseMicrofacet = true;
+#endif

@@ -9,6 +9,8 @@
 #include "shared/guiding_types.h"
 #include "shared/random.h"
 #include "shared/sampling.h"
+#include "include/features.glsl"
+#define QL_BSDF_MICROFACET kUseMicrofacet
 #include "shared/bsdf.h"
 #include "shared/tonemap.h"
 #include "shared/ray_offset.h"

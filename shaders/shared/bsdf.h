@@ -32,6 +32,15 @@
 
 QL_BEGIN
 
+// False where every material is exactly Lambertian (metallic 0, specular 0, no
+// transmission): the functions below return the Lambertian values at once, which is
+// what the full model gives there, and the microfacet code is compiled out. The
+// GLSL path passes define it as a specialization constant (on lavapipe every branch
+// side runs, so code left in costs whatever the branch).
+#ifndef QL_BSDF_MICROFACET
+#define QL_BSDF_MICROFACET true
+#endif
+
 QL_CONST float kMinGgxAlpha = 1e-3f;
 QL_CONST float kDielectricF0 = 0.04f;
 
@@ -253,6 +262,8 @@ QL_FN float ggxVndfRefractionPdf(vec3 wo, vec3 wi, float eta, float alpha) {
 
 // f(wo, wi) without the cosine; below the surface only the transmission.
 QL_FN vec3 bsdfEval(BsdfParams p, vec3 wo, vec3 wi) {
+  if (!QL_BSDF_MICROFACET)
+    return wo.z > 0.0f && wi.z > 0.0f ? lambertBrdf(p.baseColor) : vec3(0.0f);
   if (wi.z < 0.0f)
     return p.eta > 0.0f ? bsdfEvalRefraction(p, wo, wi) : bsdfEvalTransmission(p, wo, wi);
   return bsdfEvalDiffuse(p, wo, wi) + bsdfEvalSpecular(p, wo, wi);
@@ -262,6 +273,7 @@ QL_FN vec3 bsdfEval(BsdfParams p, vec3 wo, vec3 wi) {
 // times the cosine-weighted mean of 1 - s Fd(wo.h), from the fitted mean of
 // the Schlick weight (within 1e-4 of the exact integral).
 QL_FN vec3 bsdfDiffuseAlbedo(BsdfParams p, float cosThetaO) {
+  if (!QL_BSDF_MICROFACET) return p.baseColor;
   float meanFresnel =
       dielectricF0(p) + (1.0f - dielectricF0(p)) * meanSchlickWeightOverCosine(cosThetaO);
   return p.baseColor *
@@ -277,6 +289,12 @@ struct BsdfLobes {
 
 QL_FN BsdfLobes bsdfLobeProbabilities(BsdfParams p, vec3 wo) {
   BsdfLobes l;
+  if (!QL_BSDF_MICROFACET) {
+    l.specular = 0.0f;
+    l.diffuse = 1.0f;
+    l.transmission = 0.0f;
+    return l;
+  }
   l.specular = luminance(specularFresnel(p, wo.z));
   l.diffuse = luminance(bsdfDiffuseAlbedo(p, wo.z));
   l.transmission =
@@ -301,6 +319,7 @@ QL_FN float bsdfDiffuseProbability(BsdfParams p, vec3 wo) {
 // Solid-angle pdf of bsdfSample producing wi.
 QL_FN float bsdfPdf(BsdfParams p, vec3 wo, vec3 wi) {
   if (wo.z <= 0.0f || wi.z == 0.0f) return 0.0f;
+  if (!QL_BSDF_MICROFACET) return cosineHemispherePdf(wi.z);
   BsdfLobes l = bsdfLobeProbabilities(p, wo);
   float alpha = ggxAlpha(p.roughness);
   if (wi.z < 0.0f)
@@ -315,6 +334,11 @@ QL_FN float bsdfPdf(BsdfParams p, vec3 wo, vec3 wi) {
 // the surface; that probability is part of the density, so the caller just
 // ends or skips the path. pdf is the mixture density.
 QL_FN bool bsdfSample(BsdfParams p, vec3 wo, vec3 u, QL_OUT(vec3) wi, QL_OUT(float) pdf) {
+  if (!QL_BSDF_MICROFACET) {
+    wi = sampleCosineHemisphere(vec2(u.x, u.y));
+    pdf = wo.z > 0.0f ? cosineHemispherePdf(wi.z) : 0.0f;
+    return pdf > 0.0f;
+  }
   BsdfLobes l = bsdfLobeProbabilities(p, wo);
   float alpha = ggxAlpha(p.roughness);
   bool transmitted = false;

@@ -33,6 +33,9 @@
 #define QL_SPEC_LEARN 19
 // The shade pass traces the extension ray of the hit it shades (no trace pass, no hit stored).
 #define QL_SPEC_TRACE_IN_SHADE 20
+// Some material has a microfacet lobe (metal, a dielectric specular layer or transmission); else
+// every surface is exactly Lambertian and the BSDF is its short code (shared/bsdf.h).
+#define QL_SPEC_USE_MICROFACET 21
 
 QL_BEGIN
 QL_CONST uint kSpecUseTextures = QL_SPEC_USE_TEXTURES;
@@ -53,7 +56,8 @@ QL_CONST uint kSpecDqnGrid = QL_SPEC_DQN_GRID;
 QL_CONST uint kSpecBouncePhase = QL_SPEC_BOUNCE_PHASE;
 QL_CONST uint kSpecLearn = QL_SPEC_LEARN;
 QL_CONST uint kSpecTraceInShade = QL_SPEC_TRACE_IN_SHADE;
-QL_CONST uint kSpecPathFeatureCount = QL_SPEC_TRACE_IN_SHADE + 1u;  // values to pass
+QL_CONST uint kSpecUseMicrofacet = QL_SPEC_USE_MICROFACET;
+QL_CONST uint kSpecPathFeatureCount = QL_SPEC_USE_MICROFACET + 1u;  // values to pass
 
 // Values of kSpecBouncePhase.
 QL_CONST uint kBouncePhaseAny = 0u;     // whichever bounce the push constant names
