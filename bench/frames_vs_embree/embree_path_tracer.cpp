@@ -105,8 +105,8 @@ EmbreePathTracer::EmbreePathTracer(const WorldScene& scene, RTCScene rtc)
     }
   }
   if (lights_.empty())
-    throw std::runtime_error(scene.name +
-                             ": the Embree path tracer needs emissive triangles to light the scene");
+    throw std::runtime_error(
+        scene.name + ": the Embree path tracer needs emissive triangles to light the scene");
 }
 
 float EmbreePathTracer::selectPdf(uint32_t light) const {
@@ -133,8 +133,9 @@ EmbreePathTracer::Surface EmbreePathTracer::surfaceAt(const RTCRayHit& rh) const
   s.shading = s.front;
   if (mesh.normals.size() == mesh.positions.size()) {
     const uint32_t* idx = &mesh.indices[3 * primitive];
-    vec3 ns = instanceNormalMatrix_[instance] * ((1.0f - u - v) * mesh.normals[idx[0]] +
-                                                 u * mesh.normals[idx[1]] + v * mesh.normals[idx[2]]);
+    vec3 ns =
+        instanceNormalMatrix_[instance] * ((1.0f - u - v) * mesh.normals[idx[0]] +
+                                           u * mesh.normals[idx[1]] + v * mesh.normals[idx[2]]);
     float len = glm::length(ns);
     if (len > 1e-8f && std::isfinite(len)) s.shading = ns / len;
   }
@@ -179,9 +180,8 @@ vec3 EmbreePathTracer::samplePixel(uint32_t pixel, uint32_t sample, const PathTr
         const Light& l = lights_[s.light];
         float cosLight = std::abs(glm::dot(l.front, dir));
         float dist = rh.ray.tfar;
-        float lightPdf = cosLight > 0.0f
-                             ? selectPdf(s.light) * dist * dist / (l.area * cosLight)
-                             : 0.0f;
+        float lightPdf =
+            cosLight > 0.0f ? selectPdf(s.light) * dist * dist / (l.area * cosLight) : 0.0f;
         w = shared::powerHeuristic(1.0f, prevPdf, 1.0f, lightPdf);
       }
       radiance += throughput * s.material->emissive * w;
@@ -195,7 +195,8 @@ vec3 EmbreePathTracer::samplePixel(uint32_t pixel, uint32_t sample, const PathTr
     shared::TangentFrame tf = shared::frameFromNormal(ns);
     vec3 woLocal = shared::localFromWorld(tf, wo);
     const BsdfParams bsdf = bsdfOf(*s.material);
-    const bool lambertian = bsdf.metallic == 0.0f && bsdf.specular == 0.0f && bsdf.transmission == 0.0f;
+    const bool lambertian =
+        bsdf.metallic == 0.0f && bsdf.specular == 0.0f && bsdf.transmission == 0.0f;
     vec3 above = shared::offsetRayOriginFrom(s.position, ng, s.extent);
     // Directions between the shading and the geometric surface are lost (as in qlight).
     auto scatterable = [&](vec3 wiLocal, vec3 wi) {
@@ -288,8 +289,7 @@ PathTraceResult EmbreePathTracer::render(const PathTraceSettings& st) const {
         }
         r.image[pixel] = sum / float(st.spp);
         double mean = lum / st.spp;
-        if (st.spp > 1)
-          variance[pixel] = std::max(0.0, lum2 / st.spp - mean * mean) / (st.spp - 1);
+        if (st.spp > 1) variance[pixel] = std::max(0.0, lum2 / st.spp - mean * mean) / (st.spp - 1);
       }
     rays += c.rays;
     shadowRays += c.shadowRays;
@@ -299,8 +299,8 @@ PathTraceResult EmbreePathTracer::render(const PathTraceSettings& st) const {
     std::vector<std::jthread> pool;
     for (unsigned t = 0; t < std::max(1u, st.threads); ++t) pool.emplace_back(worker);
   }
-  r.wallMs = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start)
-                 .count();
+  r.wallMs =
+      std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
   r.rays = rays;
   r.shadowRays = shadowRays;
   r.paths = uint64_t(pixels) * st.spp;

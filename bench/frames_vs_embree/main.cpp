@@ -79,8 +79,8 @@ uint32_t positive(const std::string& flag, const char* value, long most) {
 std::optional<fs::path> findScene(const std::string& arg) {
   fs::path p(arg);
   if (fs::is_regular_file(p)) return p;
-  for (const fs::path dir : {fs::path(QLIGHT_SOURCE_DIR) / "assets",
-                             fs::path(QLIGHT_GENERATED_ASSETS_DIR)})
+  for (const fs::path dir :
+       {fs::path(QLIGHT_SOURCE_DIR) / "assets", fs::path(QLIGHT_GENERATED_ASSETS_DIR)})
     if (fs::is_regular_file(dir / p)) return dir / p;
   return std::nullopt;
 }
@@ -133,9 +133,11 @@ Options parse(int argc, char** argv) {
   if (o.scenes.empty())
     for (const char* s : kDefaultScenes) {
       std::optional<fs::path> p = findScene(s);
-      if (p) o.scenes.push_back(*p);
-      else std::fprintf(stderr, "%s: %s not found (build the generated_assets target): skipped\n",
-                        kName, s);
+      if (p)
+        o.scenes.push_back(*p);
+      else
+        std::fprintf(stderr, "%s: %s not found (build the generated_assets target): skipped\n",
+                     kName, s);
     }
   if (o.threads == 0) {
     const char* lp = std::getenv("LP_NUM_THREADS");
@@ -268,8 +270,8 @@ SceneFigures runScene(const gpu::Context& ctx, const fs::path& path, const Optio
 }
 
 json runJson(const Run& r) {
-  return {{"wall_ms", r.wallMs},       {"gpu_ms", r.gpuMs}, {"rays", r.rays},
-          {"shadow_rays", r.shadowRays}, {"paths", r.paths}, {"mrays_per_s", r.mrays()}};
+  return {{"wall_ms", r.wallMs},         {"gpu_ms", r.gpuMs}, {"rays", r.rays},
+          {"shadow_rays", r.shadowRays}, {"paths", r.paths},  {"mrays_per_s", r.mrays()}};
 }
 
 }  // namespace
@@ -295,16 +297,18 @@ int main(int argc, char** argv) {
       double q = f.medianMrays(f.qlight), e = f.medianMrays(f.embree);
       double trav = f.traversalOnlyOverFrame();
       const Run &ql = f.qlight.back(), &em = f.embree.back();
-      std::printf("| %s (%llu) | %.2f | %.2f | %.2fx | %.2fx | %.3f / %.3f | %.4g / %.4g (±%.2g) |\n",
-                  f.name.c_str(), (unsigned long long)f.triangles, q, e, q / e, trav,
-                  double(ql.shadowRays) / ql.paths, double(em.shadowRays) / em.paths,
-                  f.qlightMean.mean, f.embreeMean.mean, f.embreeMean.standardError);
+      std::printf(
+          "| %s (%llu) | %.2f | %.2f | %.2fx | %.2fx | %.3f / %.3f | %.4g / %.4g (±%.2g) |\n",
+          f.name.c_str(), (unsigned long long)f.triangles, q, e, q / e, trav,
+          double(ql.shadowRays) / ql.paths, double(em.shadowRays) / em.paths, f.qlightMean.mean,
+          f.embreeMean.mean, f.embreeMean.standardError);
       std::fflush(stdout);
       // Both render one light transport, so their means agree within the noise; qlight's own
       // standard error is taken as Embree's (same estimator, same samples).
       double allowed = kMeanSigmas * std::sqrt(2.0) * f.embreeMean.standardError;
       if (!(std::abs(f.qlightMean.mean - f.embreeMean.mean) <= allowed)) {
-        std::fprintf(stderr, "%s: %s: the two images' means differ by more than %g standard errors\n",
+        std::fprintf(stderr,
+                     "%s: %s: the two images' means differ by more than %g standard errors\n",
                      kName, f.name.c_str(), kMeanSigmas);
         agreed = false;
       }

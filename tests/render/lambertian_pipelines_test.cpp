@@ -26,7 +26,8 @@ TEST_F(LambertianPipelines, OnlyScenesWithAMicrofacetLobeKeepTheFullModel) {
   scene::SceneAsset door = gltf::loadGltf(assetPath("door_ajar.gltf"));
   EXPECT_FALSE(render::GpuScene(ctx(), door).hasMicrofacet());
   EXPECT_TRUE(render::GpuScene(ctx(), withUnusedGlossyMaterial(door)).hasMicrofacet());
-  EXPECT_TRUE(render::GpuScene(ctx(), gltf::loadGltf(assetPath("glossy_floor.gltf"))).hasMicrofacet());
+  EXPECT_TRUE(
+      render::GpuScene(ctx(), gltf::loadGltf(assetPath("glossy_floor.gltf"))).hasMicrofacet());
 }
 
 TEST_P(LambertianPipelines, RenderWhatTheFullModelRendersForLambertianMaterials) {
