@@ -4,6 +4,7 @@
 // against qlight's own traversal-only rate on the same scene. The two figures
 // of issue 10's frame goal: frame rays/s over Embree's (goal 0.4x) and over the
 // kernel's traversal alone (goal 0.6x). Usage: see kUsage.
+#include <CLI/CLI.hpp>
 #include <algorithm>
 #include <chrono>
 #include <cmath>
@@ -66,15 +67,6 @@ struct Options {
   std::exit(code);
 }
 
-uint32_t positive(const std::string& flag, const char* value, long most) {
-  char* end = nullptr;
-  long v = std::strtol(value, &end, 10);
-  if (!*value || *end || v < 1 || v > most)
-    fail(flag + " wants a whole number from 1 to " + std::to_string(most) + ", not '" + value +
-         "'");
-  return uint32_t(v);
-}
-
 // A path, or a file name in assets/ or in the build's generated assets (the furnished room).
 std::optional<fs::path> findScene(const std::string& arg) {
   fs::path p(arg);
@@ -88,42 +80,31 @@ std::optional<fs::path> findScene(const std::string& arg) {
 Options parse(int argc, char** argv) {
   Options o;
   bool quick = false;
-  bool sized = false, sampled = false, repeated = false;
-  for (int i = 1; i < argc; ++i) {
-    std::string a = argv[i];
-    auto value = [&]() -> const char* {
-      if (i + 1 >= argc) fail(a + " needs a value");
-      return argv[++i];
-    };
-    if (a == "--help" || a == "-h") {
-      std::fputs(kUsage, stdout);
-      std::exit(0);
-    } else if (a == "--width") {
-      o.width = positive(a, value(), 4096);
-      sized = true;
-    } else if (a == "--height") {
-      o.height = positive(a, value(), 4096);
-      sized = true;
-    } else if (a == "--spp") {
-      o.spp = positive(a, value(), 65536);
-      sampled = true;
-    } else if (a == "--reps") {
-      o.reps = positive(a, value(), 100);
-      repeated = true;
-    } else if (a == "--threads") {
-      o.threads = positive(a, value(), 1024);
-    } else if (a == "--quick") {
-      quick = true;
-    } else if (a == "--out") {
-      o.out = value();
-    } else if (a.rfind("-", 0) == 0) {
-      fail("unknown option " + a + " (see --help)");
-    } else {
-      std::optional<fs::path> p = findScene(a);
-      if (!p) fail("no scene file '" + a + "' (neither a path nor a file in assets/)");
-      o.scenes.push_back(*p);
-    }
+  std::vector<std::string> sceneArgs;
+  CLI::App app(kUsage, kName);
+  app.add_option("scenes", sceneArgs, "scenes");
+  CLI::Option* width = app.add_option("--width", o.width)->check(CLI::Range(1u, 4096u));
+  CLI::Option* height = app.add_option("--height", o.height)->check(CLI::Range(1u, 4096u));
+  CLI::Option* spp = app.add_option("--spp", o.spp)->check(CLI::Range(1u, 65536u));
+  CLI::Option* reps = app.add_option("--reps", o.reps)->check(CLI::Range(1u, 100u));
+  app.add_option("--threads", o.threads)->check(CLI::Range(1u, 1024u));
+  app.add_flag("--quick", quick);
+  app.add_option("--out", o.out);
+  try {
+    app.parse(argc, argv);
+  } catch (const CLI::CallForHelp&) {
+    std::fputs(kUsage, stdout);
+    std::exit(0);
+  } catch (const CLI::ParseError& e) {
+    fail(std::string(e.what()) + " (see --help)");
   }
+  for (const std::string& a : sceneArgs) {
+    std::optional<fs::path> p = findScene(a);
+    if (!p) fail("no scene file '" + a + "' (neither a path nor a file in assets/)");
+    o.scenes.push_back(*p);
+  }
+  const bool sized = width->count() + height->count() > 0, sampled = spp->count() > 0,
+             repeated = reps->count() > 0;
   if (quick) {
     if (!sized) o.width = 128, o.height = 72;
     if (!sampled) o.spp = 8;
