@@ -10,6 +10,7 @@
 #include <stdexcept>
 #include <thread>
 
+#include "engine/render/scene_packing.h"
 #include "shaders/shared/random.h"
 #include "shaders/shared/ray_offset.h"
 #include "shaders/shared/sampling.h"
@@ -63,6 +64,7 @@ struct EmbreePathTracer::Surface {
   vec3 shading;  // the interpolated vertex normal in world space (front when the mesh has none)
   float extent = 0;
   const scene::MaterialAsset* material = nullptr;
+  uint32_t materialIndex = 0;
   uint32_t light = kNoLight;
 };
 
@@ -72,6 +74,10 @@ struct EmbreePathTracer::Counters {
 
 EmbreePathTracer::EmbreePathTracer(const WorldScene& scene, RTCScene rtc)
     : scene_(scene), rtc_(rtc) {
+  for (const scene::MaterialAsset& m : scene.asset.materials) {
+    materialBsdf_.push_back(bsdfOf(m));
+    materialLambertian_.push_back(render::exactlyLambertian(m));
+  }
   float running = 0.0f;
   for (uint32_t i = 0; i < scene.instances.size(); ++i) {
     const WorldInstance& inst = scene.instances[i];
@@ -139,25 +145,19 @@ EmbreePathTracer::Surface EmbreePathTracer::surfaceAt(const RTCRayHit& rh) const
     float len = glm::length(ns);
     if (len > 1e-8f && std::isfinite(len)) s.shading = ns / len;
   }
-  s.material = &scene_.asset.materials[mesh.triangleMaterials[primitive]];
+  s.materialIndex = mesh.triangleMaterials[primitive];
+  s.material = &scene_.asset.materials[s.materialIndex];
   s.light = lightOfTriangle_[instanceFirstTriangle_[instance] + primitive];
   return s;
 }
 
 vec3 EmbreePathTracer::samplePixel(uint32_t pixel, uint32_t sample, const PathTraceSettings& st,
-                                   Counters& counts) const {
+                                   const CameraBasis& camera, Counters& counts) const {
   shared::Rng rng = shared::rngSeed(pixel, sample, st.seed);
-  // The camera of qlight's camera pass (bench/traversal_vs_embree/ray_sets.cpp's cameraRays).
-  const render::CameraView& cam = scene_.camera;
-  vec3 forward = glm::normalize(cam.forward);
-  vec3 right = glm::normalize(glm::cross(forward, cam.up));
-  vec3 up = glm::cross(right, forward);
-  float tanHalf = std::tan(0.5f * cam.yfov);
-  float aspect = float(st.width) / float(st.height);
   glm::vec2 xy(pixel % st.width, pixel / st.width);
   glm::vec2 ndc = (xy + shared::rngNext2(rng)) / glm::vec2(st.width, st.height) * 2.0f - 1.0f;
-  vec3 dir = glm::normalize(forward + ndc.x * tanHalf * aspect * right - ndc.y * tanHalf * up);
-  vec3 origin = cam.position;
+  vec3 dir = glm::normalize(camera.forward + ndc.x * camera.right - ndc.y * camera.up);
+  vec3 origin = scene_.camera.position;
 
   RTCIntersectContext ctx;
   rtcInitIntersectContext(&ctx);
@@ -194,9 +194,8 @@ vec3 EmbreePathTracer::samplePixel(uint32_t pixel, uint32_t sample, const PathTr
     if (glm::dot(ns, wo) <= 0.0f) ns = ng;
     shared::TangentFrame tf = shared::frameFromNormal(ns);
     vec3 woLocal = shared::localFromWorld(tf, wo);
-    const BsdfParams bsdf = bsdfOf(*s.material);
-    const bool lambertian =
-        bsdf.metallic == 0.0f && bsdf.specular == 0.0f && bsdf.transmission == 0.0f;
+    const BsdfParams& bsdf = materialBsdf_[s.materialIndex];
+    const bool lambertian = materialLambertian_[s.materialIndex];
     vec3 above = shared::offsetRayOriginFrom(s.position, ng, s.extent);
     // Directions between the shading and the geometric surface are lost (as in qlight).
     auto scatterable = [&](vec3 wiLocal, vec3 wi) {
@@ -264,6 +263,14 @@ vec3 EmbreePathTracer::samplePixel(uint32_t pixel, uint32_t sample, const PathTr
 
 PathTraceResult EmbreePathTracer::render(const PathTraceSettings& st) const {
   const uint32_t pixels = st.width * st.height;
+  // The basis and pixel mapping of qlight's camera pass (as ray_sets.cpp's cameraRays).
+  const render::CameraView& cam = scene_.camera;
+  CameraBasis camera;
+  camera.forward = glm::normalize(cam.forward);
+  vec3 right = glm::normalize(glm::cross(camera.forward, cam.up));
+  float tanHalf = std::tan(0.5f * cam.yfov);
+  camera.right = right * (tanHalf * float(st.width) / float(st.height));
+  camera.up = glm::cross(right, camera.forward) * tanHalf;
   PathTraceResult r;
   r.image.assign(pixels, vec3(0.0f));
   std::vector<double> variance(pixels, 0.0);
@@ -280,7 +287,7 @@ PathTraceResult EmbreePathTracer::render(const PathTraceSettings& st) const {
         vec3 sum(0.0f);
         double lum = 0, lum2 = 0;
         for (uint32_t k = 0; k < st.spp; ++k) {
-          vec3 L = samplePixel(pixel, k, st, c);
+          vec3 L = samplePixel(pixel, k, st, camera, c);
           if (!std::isfinite(L.x + L.y + L.z)) continue;
           sum += L;
           double l = shared::luminance(L);

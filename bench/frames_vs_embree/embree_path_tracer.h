@@ -55,22 +55,27 @@ class EmbreePathTracer {
     bool doubleSided = false;
   };
   struct Surface;
+  struct CameraBasis {
+    glm::vec3 forward, right, up;  // right and up span the image plane at distance 1
+  };
   struct Counters;
 
   Surface surfaceAt(const RTCRayHit& rh) const;
   glm::vec3 samplePixel(uint32_t pixel, uint32_t sample, const PathTraceSettings& s,
-                        Counters& counts) const;
+                        const CameraBasis& camera, Counters& counts) const;
   float selectPdf(uint32_t light) const;
   uint32_t selectLight(float u) const;
 
   const WorldScene& scene_;
   RTCScene rtc_;
   std::vector<Light> lights_;
-  std::vector<float> lightCdf_;                  // inclusive, by power
-  std::vector<uint32_t> instanceFirstTriangle_;  // into lightOfTriangle_
-  std::vector<uint32_t> lightOfTriangle_;        // kNoLight where the triangle does not emit
-  std::vector<float> instanceFrontSign_;         // -1 for mirroring transforms
-  std::vector<glm::mat3> instanceNormalMatrix_;  // world from object, for normals
+  std::vector<float> lightCdf_;                   // inclusive, by power
+  std::vector<uint32_t> instanceFirstTriangle_;   // into lightOfTriangle_
+  std::vector<uint32_t> lightOfTriangle_;         // kNoLight where the triangle does not emit
+  std::vector<float> instanceFrontSign_;          // -1 for mirroring transforms
+  std::vector<glm::mat3> instanceNormalMatrix_;   // world from object, for normals
+  std::vector<shared::BsdfParams> materialBsdf_;  // per material, from its factors
+  std::vector<bool> materialLambertian_;          // render::exactlyLambertian
 };
 
 }  // namespace qlight::bench
